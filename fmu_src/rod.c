@@ -1,0 +1,239 @@
+/* The compliant Painleve rod (Hogan & Kristiansen), physics and mode logic.
+ *
+ * Modes are discrete states that change only at events, so the right-hand
+ * side is smooth between events (MODEL.md §2):
+ *   contact  F_N = g/eps with g = -y/eps - delta w (the linear branch of eq FN)
+ *   slip     s = +1 / -1: eq Painleve with q_s, p_s, c_s
+ *   stick    s = 0: the Filippov field of Proposition lem:Filippov, v' = 0
+ * Event indicators (slot: meaning per mode):
+ *   0  y                       contact surface
+ *   1  g                       F_N = 0 while in contact, F_N > 0 ahead in flight
+ *   2  v            (slipping) reversal or stick
+ *      a + q_+ F_N  (sticking) forward fold of Lemma lemma:nonStick, < 0 inside
+ *   3  a + q_- F_N  (sticking) backward fold, > 0 inside
+ *      w            (flight)   bottom of a dip: makes a grazing contact that
+ *                              falls inside one solver step change a sign once
+ *      -1           (slipping in contact) nothing to watch */
+#include "rod.h"
+
+#include <math.h>
+
+static int sign_of(double f) { return (f > 0) - (f < 0); }
+
+/* Sign of f0, or of the first nonzero derivative after it: decides the side
+ * of a switching surface for a state that sits exactly on it. */
+static int lex_sign(double f0, double f1, double f2)
+{
+    if (f0 != 0) return sign_of(f0);
+    if (f1 != 0) return sign_of(f1);
+    return sign_of(f2);
+}
+
+RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
+{
+    const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
+    const double k = 1 + al * s * s;
+    RodCoeffs r;
+    r.a = -phi * phi * c;                       /* eq coeffs */
+    r.b = -1 + phi * phi * s;
+    r.q_plus = al * s * c - mu * k;
+    r.q_minus = al * s * c + mu * k;
+    r.p_plus = 1 + al * c * c - mu * al * s * c;
+    r.p_minus = 1 + al * c * c + mu * al * s * c;
+    r.c_plus = -al * (c - mu * s);
+    r.c_minus = -al * (c + mu * s);
+    r.S_w = (1 + al) / k;                       /* eq Sw */
+    r.S_phi = -al * c / k;
+    return r;
+}
+
+double rod_force_bracket(const RodParams *p, const double x[ROD_NX])
+{
+    return -x[ROD_Y] / p->epsilon - p->delta * x[ROD_W];
+}
+
+double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
+{
+    return m.contact ? rod_force_bracket(p, x) / p->epsilon : 0.0;
+}
+
+double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX])
+{
+    if (!m.contact) return 0.0;
+    const double F = rod_normal_force(p, m, x);
+    if (m.slip != 0) return m.slip * p->mu * F;
+    const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]);
+    const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    /* eq dynrodsc with x'' = 0 */
+    return (k.a + p->alpha * s * c * F) / (1 + p->alpha * s * s);
+}
+
+double rod_energy(const RodParams *p, const double x[ROD_NX])
+{
+    /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. */
+    const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
+    const double Xd = x[ROD_V] + phi * s, Yd = x[ROD_W] + phi * c;
+    const double y = x[ROD_Y];
+    const double spring = y < 0 ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
+    return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / p->alpha + (y + s) + spring;
+}
+
+void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX])
+{
+    const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    const double F = rod_normal_force(p, m, x);
+    dx[ROD_X] = x[ROD_V];
+    dx[ROD_Y] = x[ROD_W];
+    dx[ROD_THETA] = x[ROD_PHI];
+    if (m.slip == 0 && m.contact) {              /* Proposition lem:Filippov */
+        dx[ROD_V] = 0;
+        dx[ROD_W] = k.b + k.S_w * F;
+        dx[ROD_PHI] = k.S_phi * F;
+    } else {                                     /* eq PainleveEqs */
+        const bool fwd = m.slip >= 0;
+        dx[ROD_V] = k.a + (fwd ? k.q_plus : k.q_minus) * F;
+        dx[ROD_W] = k.b + (fwd ? k.p_plus : k.p_minus) * F;
+        dx[ROD_PHI] = (fwd ? k.c_plus : k.c_minus) * F;
+    }
+}
+
+void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ])
+{
+    z[ROD_Z_Y] = x[ROD_Y];
+    z[ROD_Z_FORCE] = rod_force_bracket(p, x);
+    if (m.contact && m.slip == 0) {
+        const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+        const double F = rod_normal_force(p, m, x);
+        z[ROD_Z_SLIP] = k.a + k.q_plus * F;
+        z[ROD_Z_AUX] = k.a + k.q_minus * F;
+    } else {
+        z[ROD_Z_SLIP] = x[ROD_V];
+        z[ROD_Z_AUX] = m.contact ? -1.0 : x[ROD_W];
+    }
+}
+
+void rod_nominals(const RodParams *p, double nominal[ROD_NX])
+{
+    const double eps = p->epsilon;
+    nominal[ROD_X] = 1;
+    nominal[ROD_V] = 1;
+    nominal[ROD_Y] = eps * eps;
+    nominal[ROD_W] = eps;
+    nominal[ROD_THETA] = 1;
+    nominal[ROD_PHI] = 1;
+}
+
+const char *rod_indicator_name(const RodMode m, int i)
+{
+    const bool stick = m.contact && m.slip == 0;
+    switch (i) {
+    case ROD_Z_Y: return "y";
+    case ROD_Z_FORCE: return "g = -y/eps - delta w (F_N = 0)";
+    case ROD_Z_SLIP: return stick ? "a + q_+ F_N (forward fold)" : "v";
+    case ROD_Z_AUX: return stick ? "a + q_- F_N (backward fold)" : m.contact ? "none" : "w (dip bottom)";
+    default: return "?";
+    }
+}
+
+/* Contact iff y <= 0 and g > 0 (eq FN), ties broken by the free motion
+ * y'' = b, so a rod at rest on y = 0 and pushed down by b < 0 is in contact. */
+static bool in_contact(const RodParams *p, const double x[ROD_NX], double b)
+{
+    const double eps = p->epsilon, w = x[ROD_W];
+    const double g = rod_force_bracket(p, x);
+    return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(g, -w / eps - p->delta * b, -b / eps) > 0;
+}
+
+/* Slip direction at v = 0 in contact: stick inside the Filippov cone
+ * a + q_+ F_N < 0 < a + q_- F_N (eq filineq), else the side v' points to. */
+static int decide_at_rest(const RodCoeffs *k, double F)
+{
+    const double fwd = k->a + k->q_plus * F, bwd = k->a + k->q_minus * F;
+    if (fwd < 0 && bwd > 0) return 0;
+    return fwd >= 0 ? +1 : -1;
+}
+
+RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed)
+{
+    const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    const double v = x[ROD_V];
+    RodMode n = { in_contact(p, x, k.b), m.slip };
+    *x_changed = false;
+    if (!n.contact) {                /* no friction in flight: s follows v */
+        n.slip = v != 0 ? sign_of(v) : (k.a >= 0 ? +1 : -1);
+        return n;
+    }
+    if (v != 0 && sign_of(v) == m.slip) return n;   /* still slipping */
+    if (v != 0) {                    /* v crossed 0 (or drifted in stick) */
+        x[ROD_V] = 0;
+        *x_changed = true;
+    }
+    n.slip = decide_at_rest(&k, rod_normal_force(p, n, x));
+    return n;
+}
+
+/* The side of indicator i on which mode m lives (0: nothing to keep). */
+static int wanted_side(const RodParams *p, RodMode m, int i, const double x[ROD_NX])
+{
+    switch (i) {
+    case ROD_Z_Y: return m.contact ? -1 : +1;
+    case ROD_Z_FORCE: return m.contact ? +1 : -1;
+    case ROD_Z_SLIP: return m.contact && m.slip == 0 ? -1 : m.slip;
+    case ROD_Z_AUX:
+        if (m.contact) return m.slip == 0 ? +1 : 0;
+        return rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]).b >= 0 ? +1 : -1;
+    default: return 0;
+    }
+}
+
+/* Which state moves indicator i, and in which direction to raise it. */
+static void mover_of(int i, int *state, int *direction)
+{
+    switch (i) {
+    case ROD_Z_Y: *state = ROD_Y; *direction = +1; break;
+    case ROD_Z_FORCE: *state = ROD_Y; *direction = -1; break;
+    case ROD_Z_SLIP: *state = ROD_V; *direction = +1; break;
+    default: *state = ROD_W; *direction = +1; break;
+    }
+}
+
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX])
+{
+    double z[ROD_NZ], nominal[ROD_NX];
+    bool moved = false;
+    rod_nominals(p, nominal);
+    for (int i = 0; i < ROD_NZ; ++i) {
+        rod_event_indicators(p, m, x, z);
+        const int side = wanted_side(p, m, i, x);
+        if (z[i] != 0 || side == 0) continue;
+        int state, direction;
+        mover_of(i, &state, &direction);
+        const double start = x[state];
+        /* The smallest step, doubling from 1e-15 nominal, that leaves the surface. */
+        for (double step = 1e-15 * nominal[state]; step < nominal[state]; step *= 2) {
+            x[state] = start + side * direction * step;
+            rod_event_indicators(p, m, x, z);
+            if (sign_of(z[i]) == side) break;
+        }
+        moved = true;
+    }
+    return moved;
+}
+
+bool rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed)
+{
+    *x_changed = false;
+    /* decide and move-off must reach a fixpoint; a few rounds always do
+     * unless the rules ping-pong, which is reported, never looped on. */
+    for (int round = 0; round < 8; ++round) {
+        bool changed;
+        const RodMode n = rod_decide_mode(p, *m, x, &changed);
+        *x_changed |= changed;
+        const bool same = n.contact == m->contact && n.slip == m->slip;
+        *m = n;
+        if (!same || changed) continue;
+        if (!rod_move_off_surfaces(p, *m, x)) return true;
+        *x_changed = true;
+    }
+    return false;
+}

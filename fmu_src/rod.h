@@ -1,0 +1,72 @@
+/* The compliant Painleve rod of Hogan & Kristiansen: physics only, no FMI.
+ *
+ * States, derivatives, event indicators and the mode logic of MODEL.md §1-2.
+ * Every function is pure apart from rod_event_update, which may move the
+ * state off a switching surface; nothing here keeps global state. */
+#ifndef ROD_H
+#define ROD_H
+
+#include <stdbool.h>
+
+/* Continuous states, in the order of modelDescription.xml. */
+enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
+
+/* Event indicators. Slots 2 and 3 change meaning with the mode (see rod.c). */
+enum { ROD_Z_Y, ROD_Z_FORCE, ROD_Z_SLIP, ROD_Z_AUX, ROD_NZ };
+
+typedef struct {
+    double alpha;   /* m l^2 / I, > 0 */
+    double mu;      /* friction coefficient, >= 0 */
+    double delta;   /* contact damping, >= 0 */
+    double epsilon; /* compliance, > 0: stiffness epsilon^-2 */
+} RodParams;
+
+typedef struct {
+    bool contact; /* compliant force active */
+    int slip;     /* +1 slip forward, 0 stick, -1 slip backward */
+} RodMode;
+
+/* Coefficients of eq coeffs and eq Sw at one (theta, phi). */
+typedef struct {
+    double a, b;
+    double q_plus, q_minus, p_plus, p_minus, c_plus, c_minus;
+    double S_w, S_phi;
+} RodCoeffs;
+
+RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
+
+/* g = -y/eps - delta w: the bracket of eq FN. */
+double rod_force_bracket(const RodParams *p, const double x[ROD_NX]);
+
+/* F_N of the current mode: smooth (linear) while in contact, 0 otherwise. */
+double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
+
+/* F_T: s mu F_N while slipping, the force that keeps v' = 0 while sticking. */
+double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
+
+/* Mechanical energy plus the spring's, in units of m g l. */
+double rod_energy(const RodParams *p, const double x[ROD_NX]);
+
+void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
+
+void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ]);
+
+/* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
+void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
+
+/* The mode the rules of MODEL.md §2 give at state x, coming from mode m.
+ * May set v to exactly 0 (entering or re-deciding stick); says so in *x_changed. */
+RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed);
+
+/* Moves x off every switching surface on which an indicator of mode m is
+ * exactly 0, towards the side mode m lives on, so that no importer restarts
+ * integration on a root. Returns true if x changed. */
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX]);
+
+/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces.
+ * Returns false if the decision does not settle (mode ping-pong). */
+bool rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed);
+
+const char *rod_indicator_name(const RodMode m, int i);
+
+#endif
