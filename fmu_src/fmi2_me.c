@@ -44,7 +44,7 @@ typedef struct {
     double time;
     Model model;
     double z_at_restart[ROD_NZ]; /* indicators when integration last (re)started */
-    bool states_moved;           /* by exitInitializationMode, not yet reported */
+    bool initial_event;          /* the event iteration right after initialization */
     double last_event_time;
     int events_without_progress;
 } Instance;
@@ -139,7 +139,7 @@ static void reset_instance(Instance *in)
     model_set_start_values(&in->model);
     in->state = Instantiated;
     in->time = 0;
-    in->states_moved = false;
+    in->initial_event = false;
     in->last_event_time = -INFINITY;
     in->events_without_progress = 0;
 }
@@ -215,7 +215,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     model_initial_mode(&in->model);
     log_event(in, "t = %.17g: initial mode contact = %d, mode = %+d", in->time,
               in->model.mode.contact, in->model.mode.slip);
-    in->states_moved = false;
+    in->initial_event = true;
     in->state = EventMode;
     return fmi2OK;
 }
@@ -427,7 +427,10 @@ static void describe_fired(Instance *in, char *text, size_t size)
 {
     const Model *m = &in->model;
     size_t n = 0;
-    text[0] = '\0';
+    if (in->initial_event) {
+        snprintf(text, size, "none (initial event iteration)");
+        return;
+    }
     for (int i = 0; i < ROD_NZ && n < size; ++i)
         if ((m->z[i] > 0) != (in->z_at_restart[i] > 0) || m->z[i] == 0)
             n += (size_t)snprintf(text + n, size - n, "%s'%s' = %.3g", n ? ", " : "",
@@ -453,7 +456,7 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
     if (switched || moved) {
         log_event(in, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", in->time, fired,
                   before.contact, m->mode.contact, before.slip, m->mode.slip,
-                  moved ? "; state moved off the switching surface" : "");
+                  moved ? "; continuous states changed" : "");
     }
     /* Zeno guard: a run of events that does not advance time is an error. */
     const bool no_progress = in->time - in->last_event_time <= 1e-14 * (1 + fabs(in->time));
@@ -465,10 +468,10 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
-    info->valuesOfContinuousStatesChanged = (switched || moved || in->states_moved) ? fmi2True : fmi2False;
+    info->valuesOfContinuousStatesChanged = (switched || moved) ? fmi2True : fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0;
-    in->states_moved = false;
+    in->initial_event = false;
     return fmi2OK;
 }
 
