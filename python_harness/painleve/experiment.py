@@ -1,0 +1,223 @@
+"""Impact without collision on the PainleveRod FMU, driven by fmpy, beside the paper's predictions.
+
+One `Experiment` extracts the FMU and instantiates it once, then runs any
+number of cases on that instance with fmi2Reset between them (fmpy's fast
+loop). A case starts on the floor, y = 0, w = eps * w10 (MODEL.md §3), and
+ends when the rod, having touched the floor, is back at y = 0 moving up.
+
+What it knows of fmpy 0.3.32 and chooses for the user:
+- CVode takes at most 500 steps per output interval; the interval is eps/2,
+  so even the stiffest case (eps = 1e-6) never reaches that limit.
+- CVode's absolute tolerance is the relative one times each state's nominal,
+  and the FMU reports y ~ eps^2, w ~ eps: one tolerance fits every stiffness.
+- Euler steps once per output interval: both are set to the step.
+- Events are recorded (two rows each, the exact event state), so the return
+  velocity is read at the y = 0 event, with no interpolation.
+"""
+import math
+import shutil
+import tempfile
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from fmpy import extract, read_model_description, simulate_fmu
+from fmpy.simulation import instantiate_fmu
+
+from . import analytic as an
+
+OUTPUTS = ["v", "y", "w", "theta", "phi", "mode", "contact"]
+
+
+@dataclass(frozen=True)
+class Case:
+    """An IWC experiment: the rod's parameters and its state on the floor at t = 0."""
+    theta0: float = 1.0
+    phi0: float = 0.5
+    v0: float = 1.0
+    delta: float = 1.0
+    epsilon: float = 1e-3
+    w10: float = 0.0      # w(0) = epsilon * w10: the inner scale of Theorem 2
+    alpha: float = 3.0
+    mu: float = 3.0
+
+    @property
+    def theorem(self):
+        """1 (inconsistent quadrant, b < 0) or 2 (indeterminate, b > 0)."""
+        return 1 if an.b(self.theta0, self.phi0) < 0 else 2
+
+    def check(self):
+        """Raises HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
+        if not (self.epsilon > 0 and math.isfinite(self.epsilon)):
+            raise an.HypothesisError(f"epsilon must be > 0; got {self.epsilon}")
+        check = an.check_theorem1 if self.theorem == 1 else an.check_theorem2
+        check(self.theta0, self.phi0, self.v0, alpha=self.alpha, mu=self.mu, delta=self.delta)
+        if self.theorem == 2 and not self.w10 < 0:
+            raise an.HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {self.w10}")
+
+    def start_values(self):
+        return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon,
+                    x=0.0, v=self.v0, y=0.0, w=self.epsilon * self.w10, theta=self.theta0, phi=self.phi0)
+
+    def _params(self):
+        return dict(alpha=self.alpha, mu=self.mu)
+
+    @property
+    def e(self):
+        return float(an.e(self.delta, self.theta0, **self._params()))
+
+    @property
+    def predicted_phi(self):
+        return float(an.phi_after_iwc(self.theta0, self.phi0, self.v0, self.delta, **self._params()))
+
+    @property
+    def time_scale(self):
+        """eps ln(1/eps) / lambda_+: the IWC's duration up to O(eps) (eq TT)."""
+        return float(an.iwc_time_scale(self.epsilon, self.theta0, self.delta, **self._params()))
+
+    @property
+    def w1_star(self):
+        """Theorem 2's separatrix (NaN for a Theorem 1 case)."""
+        if self.theorem == 1:
+            return math.nan
+        return float(an.w1_star(self.theta0, self.phi0, self.delta, **self._params()))
+
+    @property
+    def predicts_iwc(self):
+        return self.theorem == 1 or self.w10 < self.w1_star
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What the FMU did, at the rod's return to y = 0, beside the analytic predictions."""
+    case: Case
+    iwc: bool               # the rod stuck before lifting off
+    w: float
+    theta: float
+    phi: float
+    v: float
+    t_return: float
+    compression: float      # durations; NaN for phases that did not happen
+    stick: float
+    lift_off: float
+    events: int
+
+    @property
+    def w_error(self):
+        """w/v0 - e: o(1) as eps -> 0 (Theorem 1)."""
+        return self.w / self.case.v0 - self.case.e
+
+    @property
+    def phi_error(self):
+        return self.phi - self.case.predicted_phi
+
+    @property
+    def theta_error(self):
+        return self.theta - self.case.theta0
+
+    def as_row(self):
+        """A flat dict: the case, the outcome, the predictions and the errors."""
+        row = {**asdict(self.case), **{k: v for k, v in asdict(self).items() if k != "case"}}
+        row.update(e=self.case.e, predicted_w=self.case.e * self.case.v0, predicted_phi=self.case.predicted_phi,
+                   w_error=self.w_error, phi_error=self.phi_error, theta_error=self.theta_error,
+                   time_scale=self.case.time_scale)
+        return row
+
+
+class Experiment:
+    """Runs IWC cases on one extracted FMU and one instance (fmpy's fast loop)."""
+
+    def __init__(self, fmu_path, *, solver="CVode", relative_tolerance=1e-6, steps_per_epsilon=100):
+        if solver not in ("CVode", "Euler"):
+            raise ValueError(f"solver must be 'CVode' or 'Euler', not {solver!r}")
+        self.solver = solver
+        self.relative_tolerance = relative_tolerance
+        self.steps_per_epsilon = steps_per_epsilon
+        self.model_description = read_model_description(fmu_path)
+        self._tmp = tempfile.mkdtemp(prefix="painleve-")
+        self.unzipdir = extract(fmu_path, self._tmp)
+        self.fmu = instantiate_fmu(self.unzipdir, self.model_description, fmi_type="ModelExchange")
+        vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
+        self._vr_yw, self._vr_contact = [vr["y"], vr["w"]], [vr["contact"]]
+        self._used = False
+
+    def close(self):
+        self.fmu.freeInstance()
+        shutil.rmtree(self._tmp, ignore_errors=True)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _back_on_floor(self):
+        """fmpy's step_finished callback: stop once the rod has touched and is back at y = 0."""
+        touched = [False]
+
+        def step_finished(time, recorder):
+            contact = self.fmu.getBoolean(self._vr_contact)[0]
+            touched[0] |= bool(contact)
+            y = self.fmu.getReal(self._vr_yw)[0]
+            return not (touched[0] and not contact and y >= 0)
+        return step_finished
+
+    def _solver_settings(self, case):
+        # Generous horizon: the run stops itself at the return to y = 0.
+        horizon = case.epsilon * (10 * math.log(1 / case.epsilon) / max(case_lambda_plus(case), 1e-3) + 1000)
+        if self.solver == "CVode":
+            return dict(relative_tolerance=self.relative_tolerance, output_interval=case.epsilon / 2,
+                        stop_time=horizon)
+        h = case.epsilon / self.steps_per_epsilon
+        return dict(step_size=h, output_interval=h, stop_time=horizon)
+
+    def simulate(self, case):
+        """The raw trajectory of one case (fmpy's structured array), events included."""
+        case.check()
+        if self._used:
+            self.fmu.reset()
+        self._used = True
+        return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.fmu,
+                            solver=self.solver, start_values=case.start_values(), output=OUTPUTS,
+                            record_events=True, step_finished=self._back_on_floor(), validate=False,
+                            **self._solver_settings(case))
+
+    def run(self, case):
+        """One case, reduced to its Outcome."""
+        return outcome_of(case, self.simulate(case))
+
+
+def case_lambda_plus(case):
+    return float(an.lambda_pm(case.theta0, case.delta, alpha=case.alpha, mu=case.mu)[0])
+
+
+def _first(mask, start=0):
+    hits = np.flatnonzero(mask[start:])
+    return start + hits[0] if hits.size else None
+
+
+def outcome_of(case, r):
+    """Reads the phases off a trajectory: compression (slip), stick, lift-off, return."""
+    t, contact, mode = r["time"], r["contact"].astype(bool), r["mode"]
+    end = len(r) - 1
+    if contact[end] or r["y"][end] < 0:
+        raise RuntimeError(f"{case} did not return to y = 0 within t = {t[end]:.3g}: raise the horizon")
+    touch = _first(contact)
+    stick_start = _first(contact & (mode == 0), touch)
+    nan = math.nan
+    if stick_start is None:
+        compression, stick, lift_off = nan, nan, t[end] - t[touch]
+    else:
+        stick_end = _first(mode != 0, stick_start)
+        compression = t[stick_start] - t[touch]
+        stick = t[stick_end] - t[stick_start]
+        lift_off = t[end] - t[stick_end]
+    return Outcome(case=case, iwc=stick_start is not None, w=float(r["w"][end]), theta=float(r["theta"][end]),
+                   phi=float(r["phi"][end]), v=float(r["v"][end]), t_return=float(t[end]),
+                   compression=float(compression), stick=float(stick), lift_off=float(lift_off),
+                   events=int(np.sum(np.diff(t) == 0)))
+
+
+def run_iwc(fmu_path, *, solver="CVode", relative_tolerance=1e-6, **case):
+    """One case, fmpy style: run_iwc("PainleveRod.fmu", theta0=1.0, epsilon=1e-4)."""
+    with Experiment(fmu_path, solver=solver, relative_tolerance=relative_tolerance) as experiment:
+        return experiment.run(Case(**case))

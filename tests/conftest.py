@@ -1,0 +1,14 @@
+"""Fixtures shared by the FMU tests: the built FMU, found where run.sh builds it."""
+import pathlib
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def fmu_path():
+    path = ROOT / "build" / "PainleveRod.fmu"
+    if not path.exists():
+        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
+    return str(path)

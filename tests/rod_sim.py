@@ -1,0 +1,41 @@
+"""Drives the FMU through fmpy for the tests, and reads trajectories the way a physicist would."""
+import numpy as np
+import fmpy
+
+OUTPUTS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact")
+
+
+def simulate(fmu, stop_time, *, solver="CVode", rtol=1e-6, step_size=None, output_interval=None, **start):
+    """One run with every output recorded, events included; fails on any NaN or infinity."""
+    result = fmpy.simulate_fmu(
+        fmu, stop_time=stop_time, solver=solver, relative_tolerance=rtol, step_size=step_size,
+        output_interval=output_interval, start_values=start, output=list(OUTPUTS), record_events=True)
+    for name in ("time",) + OUTPUTS[:-2]:
+        assert np.all(np.isfinite(result[name])), f"{name} is not finite"
+    return result
+
+
+def mode_changes(result):
+    """Indices i where (contact, mode) differs from row i-1."""
+    key = result["contact"].astype(int) * 10 + result["mode"]
+    return np.flatnonzero(np.diff(key) != 0) + 1
+
+
+def phases(result):
+    """The sequence of (contact, mode) the run went through."""
+    starts = np.concatenate(([0], mode_changes(result)))
+    return [(bool(result["contact"][i]), int(result["mode"][i])) for i in starts]
+
+
+def event_count(result):
+    """fmpy records each event twice, at the same time."""
+    return int(np.sum(np.diff(result["time"]) == 0))
+
+
+def rod_energy(r, alpha, epsilon):
+    """Energy of the rod and the contact spring, derived here from the states alone:
+    the centre of mass is (x - cos theta, y + sin theta) (eq coord), the moment of inertia 1/alpha."""
+    s, c, phi, y = np.sin(r["theta"]), np.cos(r["theta"]), r["phi"], r["y"]
+    kinetic = 0.5 * ((r["v"] + phi * s) ** 2 + (r["w"] + phi * c) ** 2) + 0.5 * phi**2 / alpha
+    spring = np.where(y < 0, 0.5 * (y / epsilon) ** 2, 0.0)
+    return kinetic + (y + s) + spring
