@@ -28,8 +28,9 @@ typedef enum {
 #define BEFORE_INIT_ENDS (Instantiated | InitializationMode)
 #define SIMULATING (EventMode | ContinuousTimeMode)
 
-/* Consecutive events at one instant that end the run as a Zeno error. */
-#define MAX_EVENTS_WITHOUT_PROGRESS 100
+/* Events within one window of the contact's fastest time scale, eps^2, that
+ * end the run as a Zeno error: a physical IWC has at most four there. */
+#define MAX_EVENTS_IN_WINDOW 100
 
 enum { LOG_EVENTS, LOG_WARNING, LOG_ERROR, LOG_ALL, N_LOG_CATEGORIES };
 static const char *const LOG_CATEGORY[N_LOG_CATEGORIES] = {
@@ -45,8 +46,8 @@ typedef struct {
     Model model;
     double z_at_restart[ROD_NZ]; /* indicators when integration last (re)started */
     bool initial_event;          /* the event iteration right after initialization */
-    double last_event_time;
-    int events_without_progress;
+    double window_start; /* of the current run of events without progress */
+    int events_in_window;
 } Instance;
 
 static const char *state_name(InstanceState s)
@@ -140,8 +141,8 @@ static void reset_instance(Instance *in)
     in->state = Instantiated;
     in->time = 0;
     in->initial_event = false;
-    in->last_event_time = -INFINITY;
-    in->events_without_progress = 0;
+    in->window_start = -INFINITY;
+    in->events_in_window = 0;
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -458,13 +459,19 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
                   before.contact, m->mode.contact, before.slip, m->mode.slip,
                   moved ? "; continuous states changed" : "");
     }
-    /* Zeno guard: a run of events that does not advance time is an error. */
-    const bool no_progress = in->time - in->last_event_time <= 1e-14 * (1 + fabs(in->time));
-    in->events_without_progress = no_progress ? in->events_without_progress + 1 : 0;
-    in->last_event_time = in->time;
-    REQUIRE("fmi2NewDiscreteStates", in->events_without_progress < MAX_EVENTS_WITHOUT_PROGRESS,
-            "%d events at t = %.17g without progress in time (last indicator %s, contact = %d, mode = %+d)",
-            MAX_EVENTS_WITHOUT_PROGRESS, in->time, fired, m->mode.contact, m->mode.slip);
+    /* Zeno guard: a run of events that does not advance time is an error, not a hang. */
+    const double eps = m->params.epsilon;
+    const double window = eps * eps + 1e-12 * (1 + fabs(in->time));
+    if (in->time - in->window_start > window) {
+        in->window_start = in->time;
+        in->events_in_window = 0;
+    }
+    ++in->events_in_window;
+    REQUIRE("fmi2NewDiscreteStates", in->events_in_window < MAX_EVENTS_IN_WINDOW,
+            "%d events between t = %.17g and %.17g (less than eps^2 = %g): the modes chatter without progress "
+            "in time (last indicator %s; contact = %d, mode = %+d, theta = %g)",
+            MAX_EVENTS_IN_WINDOW, in->window_start, in->time, eps * eps, fired, m->mode.contact, m->mode.slip,
+            m->x[ROD_THETA]);
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;

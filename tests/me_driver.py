@@ -1,13 +1,12 @@
 """A minimal FMI 2.0 Model Exchange driver over fmpy's low-level FMU2Model,
 for tests that need each call in hand: interleaved instances, captured log
 messages, calls in the wrong state."""
-from ctypes import POINTER, byref, c_double
+from ctypes import POINTER, c_double
 
 import numpy as np
-from fmpy import calloc, free, read_model_description
-from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
-from fmpy.logging import addLoggerProxy
+from fmpy import read_model_description
+
+from painleve.instance import instantiate
 
 _P = POINTER(c_double)
 
@@ -20,17 +19,8 @@ class Rod:
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.nx, self.nz = len(md.derivatives), md.numberOfEventIndicators
         self.messages = []
-        self._callbacks = fmi2CallbackFunctions()
-        self._callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
-        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(byref(self._callbacks))
-        self.fmu = FMU2Model(guid=guid or md.guid, unzipDirectory=unzipdir,
-                             modelIdentifier=md.modelExchange.modelIdentifier, instanceName=name)
-        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
-
-    def _log(self, env, name, status, category, message):
-        self.messages.append((status, category.decode(), message.decode()))
+        self.fmu = instantiate(unzipdir, md, lambda *m: self.messages.append(m), name=name, guid=guid,
+                               logging_on=logging_on)
 
     def set(self, **values):
         self.fmu.setReal([self.vr[k] for k in values], list(values.values()))

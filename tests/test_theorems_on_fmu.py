@@ -1,0 +1,108 @@
+"""Theorems 1 and 2 of Hogan & Kristiansen, checked on the FMU through the harness:
+the simulated IWC converges to the analytic limits as eps -> 0."""
+import math
+
+import numpy as np
+import pytest
+
+from painleve import analytic as an
+from painleve.experiment import Case, Experiment, SimulationError, run_iwc
+from painleve.studies import convergence, separatrix
+
+
+@pytest.fixture(scope="module")
+def experiment(fmu_path):
+    with Experiment(fmu_path) as ex:
+        yield ex
+
+
+def wedge_points(alpha, mu, n=3):
+    """theta0 across (theta_1, theta_2), away from the ends where p_+ -> 0."""
+    t1, t2 = an.theta_1(alpha=alpha, mu=mu), an.theta_2(alpha=alpha, mu=mu)
+    return list(t1 + (t2 - t1) * np.linspace(0.15, 0.85, n))
+
+
+WIDE = [dict(alpha=3.0, mu=3.0, theta0=th) for th in wedge_points(3.0, 3.0)] + \
+       [dict(alpha=2.0, mu=3.0, theta0=th) for th in wedge_points(2.0, 3.0, 2)]
+THIN = [dict(alpha=3.0, mu=1.4, theta0=th) for th in wedge_points(3.0, 1.4, 2)]
+
+
+@pytest.mark.parametrize("delta", [0.0, 0.5, 2.0, 10.0])
+@pytest.mark.parametrize("params, epsilons", [(p, [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7]) for p in WIDE] +
+                         [(p, [1e-3, 1e-4, 1e-5, 1e-6, 1e-7]) for p in THIN])
+def test_theorem1_errors_shrink_as_eps_decreases(experiment, params, epsilons, delta):
+    phi0 = 0.5
+    # The asymptotic regime: gravity acts over a stick of fast time ~ delta while e ~ delta^-2, so eps delta^3 << 1.
+    epsilons = [eps for eps in epsilons if eps * (1 + delta) ** 3 <= 2e-2]
+    case = Case(phi0=phi0, v0=1.0, delta=delta, **params)
+    assert an.quadrant(case.theta0, phi0, alpha=case.alpha, mu=case.mu) == "inconsistent"
+    study = convergence(experiment, case, epsilons)
+    assert all(o.iwc for o in study.outcomes)
+    for name in ("w", "phi", "v"):
+        err = np.abs(study.errors(name))
+        assert np.all(np.diff(err[1:]) < 0), f"{name} errors must fall with eps:\n{study.table()}"
+        # o(1): about eps ln(1/eps), a log-log slope a little under 1 (v faster when delta = 0:
+        # the return to y = 0 is then the lift-off itself)
+        assert study.rate(name) > 0.6, study.table()
+    assert abs(study.errors("w")[-1]) < 0.02 * case.e, study.table()
+
+
+@pytest.mark.parametrize("params", [WIDE[1], THIN[0]])
+def test_iwc_duration_follows_eps_ln_over_lambda_plus(experiment, params):
+    study = convergence(experiment, Case(phi0=0.5, delta=1.0, **params), [1e-4, 1e-5, 1e-6])
+    assert study.duration_slope == pytest.approx(study.predicted_duration_slope, rel=0.05), study.table()
+
+
+def test_theorem1_phases_compress_stick_lift_off(experiment):
+    o = experiment.run(Case(epsilon=1e-5))
+    assert o.iwc and o.events == 3
+    assert o.compression > 0 and o.stick > 0 and o.lift_off > 0
+    # each phase is O(eps ln 1/eps) or shorter
+    assert o.t_return < 20 * o.case.time_scale
+
+
+VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, alpha=3.0, mu=3.0)
+
+
+@pytest.mark.parametrize("epsilon", [1e-3, 1e-4, 1e-5])
+def test_theorem2_below_separatrix_iwc_above_lift_off(experiment, epsilon):
+    case = Case(epsilon=epsilon, **VIDEO)
+    assert an.quadrant(case.theta0, case.phi0, alpha=3, mu=3) == "indeterminate"
+    w1s = case.w1_star
+    below = experiment.run(Case(epsilon=epsilon, w10=1.2 * w1s, **VIDEO))
+    above = experiment.run(Case(epsilon=epsilon, w10=0.8 * w1s, **VIDEO))
+    assert below.iwc and below.w == pytest.approx(case.e, rel=0.05)
+    assert not above.iwc and 0 < above.w < 5 * epsilon          # w = O(eps)
+
+
+def test_theorem2_boundary_found_by_bisection_approaches_w1_star(experiment):
+    w1s = Case(**VIDEO).w1_star
+    gaps = []
+    for epsilon in (1e-3, 1e-4, 1e-5):
+        boundary = separatrix(experiment, Case(epsilon=epsilon, **VIDEO), lower=1.5 * w1s, upper=0.5 * w1s)
+        gaps.append(abs(boundary - w1s))
+    assert gaps[1] < gaps[0] and gaps[2] < gaps[1]
+    assert gaps[-1] < 0.01 * abs(w1s)
+
+
+@pytest.mark.parametrize("case, words", [
+    (dict(theta0=1.5), "p_+"),                         # outside the Painleve wedge
+    (dict(v0=-1.0), "v0"),
+    (dict(theta0=0.9463, phi0=1.6654, w10=0.5), "w10"),  # Theorem 2 needs the rod moving down
+    (dict(epsilon=0.0), "epsilon"),
+])
+def test_a_case_outside_the_hypotheses_says_which(fmu_path, case, words):
+    with pytest.raises(an.HypothesisError, match=words):
+        run_iwc(fmu_path, **case)
+
+
+def test_a_case_outside_the_asymptotic_regime_fails_with_the_fmus_reason(experiment):
+    # eps delta = 0.1: the rod sticks quasi-statically, rotates through the floor and chatters at a fold
+    with pytest.raises(SimulationError, match="the modes chatter without progress in time"):
+        experiment.run(Case(theta0=0.5908, delta=10.0, epsilon=1e-2))
+
+
+def test_euler_gives_the_same_iwc_within_its_first_order_error(fmu_path):
+    cvode = run_iwc(fmu_path, epsilon=1e-4)
+    euler = run_iwc(fmu_path, epsilon=1e-4, solver="Euler")
+    assert euler.iwc and math.isclose(euler.w, cvode.w, rel_tol=0.05)
