@@ -237,18 +237,19 @@ fmi2Status fmi2Reset(fmi2Component c)
 
 /* ------------------------------------------------------ getters, setters */
 
-static fmi2Status check_arrays(Instance *in, const char *call, const void *vr, size_t nvr, const void *value)
-{
-    REQUIRE(call, nvr == 0 || (vr && value), "vr or value is NULL with nvr = %zu", nvr);
-    return fmi2OK;
-}
-
 /* Derived values; during initialization with the mode the start state implies. */
 static Model *current(Instance *in)
 {
     if (in->state == InitializationMode) model_initial_mode(&in->model);
     model_update_derived(&in->model);
     return &in->model;
+}
+
+
+static fmi2Status check_arrays(Instance *in, const char *call, const void *vr, size_t nvr, const void *value)
+{
+    REQUIRE(call, nvr == 0 || (vr && value), "vr or value is NULL with nvr = %zu", nvr);
+    return fmi2OK;
 }
 
 static fmi2Status get_reals(Instance *in, const char *call, const fmi2ValueReference vr[], size_t nvr,
@@ -404,14 +405,26 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown,
                                         const fmi2Real dvKnown[], fmi2Real dvUnknown[])
 {
-    (void)vUnknown_ref;
-    (void)nUnknown;
-    (void)vKnown_ref;
-    (void)nKnown;
-    (void)dvKnown;
-    (void)dvUnknown;
-    BEGIN("fmi2GetDirectionalDerivative", READABLE);
-    return fail(in, "fmi2GetDirectionalDerivative", "not supported (providesDirectionalDerivative is false)");
+    static const char call[] = "fmi2GetDirectionalDerivative";
+    BEGIN(call, READABLE);
+    REQUIRE(call, (nUnknown == 0 || (vUnknown_ref && dvUnknown)) && (nKnown == 0 || (vKnown_ref && dvKnown)),
+            "an array is NULL");
+    for (size_t j = 0; j < nKnown; ++j)
+        REQUIRE(call, vKnown_ref[j] >= VR_X && vKnown_ref[j] <= VR_PHI,
+                "known value reference %u is not a continuous state (states are %d..%d)", vKnown_ref[j], VR_X, VR_PHI);
+    for (size_t i = 0; i < nUnknown; ++i)
+        REQUIRE(call, vUnknown_ref[i] >= VR_DER_X && vUnknown_ref[i] <= VR_DER_PHI,
+                "unknown value reference %u is not a state derivative (derivatives are %d..%d)", vUnknown_ref[i],
+                VR_DER_X, VR_DER_PHI);
+    const Model *m = current(in);
+    double J[ROD_NX][ROD_NX];
+    rod_jacobian(&m->params, m->mode, m->x, J);
+    for (size_t i = 0; i < nUnknown; ++i) {
+        double sum = 0;
+        for (size_t j = 0; j < nKnown; ++j) sum += J[vUnknown_ref[i] - VR_DER_X][vKnown_ref[j] - VR_X] * dvKnown[j];
+        dvUnknown[i] = sum;
+    }
+    return fmi2OK;
 }
 
 /* -------------------------------------------------------- model exchange */

@@ -97,6 +97,64 @@ void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], doub
     }
 }
 
+/* d/dtheta of the coefficients in RodCoeffs (phi enters a and b only). */
+static RodCoeffs coeffs_dtheta(const RodParams *p, double theta, double phi)
+{
+    const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
+    const double k = 1 + al * s * s, dk = 2 * al * s * c, c2s2 = c * c - s * s;
+    RodCoeffs d;
+    d.a = phi * phi * s;
+    d.b = phi * phi * c;
+    d.q_plus = al * c2s2 - mu * dk;
+    d.q_minus = al * c2s2 + mu * dk;
+    d.p_plus = -2 * al * s * c - mu * al * c2s2;
+    d.p_minus = -2 * al * s * c + mu * al * c2s2;
+    d.c_plus = al * (s + mu * c);
+    d.c_minus = al * (s - mu * c);
+    d.S_w = -(1 + al) * dk / (k * k);
+    d.S_phi = al * s / k + al * c * dk / (k * k);
+    return d;
+}
+
+void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX])
+{
+    const double th = x[ROD_THETA], phi = x[ROD_PHI], eps = p->epsilon;
+    const RodCoeffs k = rod_coeffs(p, th, phi), dk = coeffs_dtheta(p, th, phi);
+    const double F = rod_normal_force(p, m, x);
+    /* F = g/eps in contact: dF/dy = -1/eps^2, dF/dw = -delta/eps */
+    const double F_y = m.contact ? -1 / (eps * eps) : 0, F_w = m.contact ? -p->delta / eps : 0;
+    for (int i = 0; i < ROD_NX; ++i)
+        for (int j = 0; j < ROD_NX; ++j) J[i][j] = 0;
+    J[ROD_X][ROD_V] = 1;
+    J[ROD_Y][ROD_W] = 1;
+    J[ROD_THETA][ROD_PHI] = 1;
+    double kv, kw, kphi, dkv, dkw, dkphi; /* F's coefficients in v', w', phi' and their theta-derivatives */
+    if (m.contact && m.slip == 0) {
+        kv = dkv = 0;
+        kw = k.S_w, dkw = dk.S_w;
+        kphi = k.S_phi, dkphi = dk.S_phi;
+    } else {
+        const bool fwd = m.slip >= 0;
+        kv = fwd ? k.q_plus : k.q_minus, dkv = fwd ? dk.q_plus : dk.q_minus;
+        kw = fwd ? k.p_plus : k.p_minus, dkw = fwd ? dk.p_plus : dk.p_minus;
+        kphi = fwd ? k.c_plus : k.c_minus, dkphi = fwd ? dk.c_plus : dk.c_minus;
+    }
+    const bool moving_v = !(m.contact && m.slip == 0);
+    if (moving_v) {
+        J[ROD_V][ROD_THETA] = dk.a + dkv * F;
+        J[ROD_V][ROD_PHI] = -2 * phi * cos(th);
+        J[ROD_V][ROD_Y] = kv * F_y;
+        J[ROD_V][ROD_W] = kv * F_w;
+    }
+    J[ROD_W][ROD_THETA] = dk.b + dkw * F;
+    J[ROD_W][ROD_PHI] = 2 * phi * sin(th);
+    J[ROD_W][ROD_Y] = kw * F_y;
+    J[ROD_W][ROD_W] = kw * F_w;
+    J[ROD_PHI][ROD_THETA] = dkphi * F;
+    J[ROD_PHI][ROD_Y] = kphi * F_y;
+    J[ROD_PHI][ROD_W] = kphi * F_w;
+}
+
 void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ])
 {
     z[ROD_Z_Y] = x[ROD_Y];

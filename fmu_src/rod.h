@@ -49,6 +49,9 @@ double rod_energy(const RodParams *p, const double x[ROD_NX]);
 
 void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
 
+/* J[i][j] = d dx_i / d x_j of the current mode's smooth right-hand side. */
+void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX]);
+
 void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ]);
 
 /* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
