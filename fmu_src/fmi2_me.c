@@ -1,4 +1,5 @@
-/* FMI 2.0 Model Exchange on top of the model interface of model.h.
+/* FMI 2.0 on top of the model interface of model.h: the calls common to both
+ * interfaces and those of Model Exchange (Co-Simulation: fmi2_cs.c).
  *
  * Every call checks the instance state against the states the standard
  * allows it in; any fmi2Error is logged with the call's name and moves the
@@ -9,54 +10,25 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fmi2Functions.h"
-#include "model.h"
+#include "fmi2_instance.h"
 #include "model_guid.h"
-
-typedef enum {
-    Instantiated = 1 << 0,
-    InitializationMode = 1 << 1,
-    EventMode = 1 << 2,
-    ContinuousTimeMode = 1 << 3,
-    Terminated = 1 << 4,
-    Error = 1 << 5,
-} InstanceState;
-
-/* States each call is allowed in (FMI 2.0 §3.2.3, Model Exchange). */
-#define ANY_BUT_FATAL (Instantiated | InitializationMode | EventMode | ContinuousTimeMode | Terminated | Error)
-#define READABLE (InitializationMode | EventMode | ContinuousTimeMode | Terminated | Error)
-#define BEFORE_INIT_ENDS (Instantiated | InitializationMode)
-#define SIMULATING (EventMode | ContinuousTimeMode)
 
 /* Events within one window of the contact's fastest time scale, eps^2, that
  * end the run as a Zeno error: a physical IWC has at most four there. */
 #define MAX_EVENTS_IN_WINDOW 100
 
-enum { LOG_EVENTS, LOG_WARNING, LOG_ERROR, LOG_ALL, N_LOG_CATEGORIES };
 static const char *const LOG_CATEGORY[N_LOG_CATEGORIES] = {
     "logEvents", "logStatusWarning", "logStatusError", "logAll"
 };
 
-typedef struct {
-    fmi2CallbackFunctions cb;
-    char *name;
-    InstanceState state;
-    bool log_on[N_LOG_CATEGORIES];
-    double time;
-    Model model;
-    double z_at_restart[ROD_NZ]; /* indicators when integration last (re)started */
-    bool initial_event;          /* the event iteration right after initialization */
-    double window_start; /* of the current run of events without progress */
-    int events_in_window;
-} Instance;
-
-static const char *state_name(InstanceState s)
+const char *state_name(InstanceState s)
 {
     switch (s) {
     case Instantiated: return "Instantiated";
     case InitializationMode: return "InitializationMode";
     case EventMode: return "EventMode";
     case ContinuousTimeMode: return "ContinuousTimeMode";
+    case StepComplete: return "StepComplete";
     case Terminated: return "Terminated";
     default: return "Error";
     }
@@ -76,7 +48,7 @@ static void emit(Instance *in, fmi2Status status, int category, const char *text
         in->cb.logger(in->cb.componentEnvironment, in->name, status, LOG_CATEGORY[category], escaped);
 }
 
-static void log_event(Instance *in, const char *fmt, ...)
+void log_event(Instance *in, const char *fmt, ...)
 {
     if (!in->log_on[LOG_EVENTS] && !in->log_on[LOG_ALL]) return;
     char text[1024];
@@ -87,8 +59,7 @@ static void log_event(Instance *in, const char *fmt, ...)
     emit(in, fmi2OK, LOG_EVENTS, text);
 }
 
-/* Logs "call: reason", enters the Error state, returns fmi2Error. */
-static fmi2Status fail(Instance *in, const char *call, const char *fmt, ...)
+fmi2Status fail(Instance *in, const char *call, const char *fmt, ...)
 {
     char text[1024];
     int n = snprintf(text, sizeof text, "%s: ", call);
@@ -100,16 +71,6 @@ static fmi2Status fail(Instance *in, const char *call, const char *fmt, ...)
     in->state = Error;
     return fmi2Error;
 }
-
-/* NULL-safe instance check: a call on a NULL instance cannot log anything. */
-#define BEGIN(call, allowed)                                                              \
-    Instance *in = (Instance *)c;                                                         \
-    if (!in) return fmi2Error;                                                            \
-    if (!(in->state & (allowed)))                                                         \
-        return fail(in, call, "not allowed in state %s", state_name(in->state))
-
-#define REQUIRE(call, cond, ...) \
-    if (!(cond)) return fail(in, call, __VA_ARGS__)
 
 /* ---------------------------------------------------------------- common */
 
@@ -143,6 +104,8 @@ static void reset_instance(Instance *in)
     in->initial_event = false;
     in->window_start = -INFINITY;
     in->events_in_window = 0;
+    in->tolerance = 0;
+    in->last_successful_time = 0;
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -157,8 +120,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         fail(&probe, "fmi2Instantiate", "instanceName must be a non-empty string");
         return NULL;
     }
-    if (fmuType != fmi2ModelExchange) {
-        fail(&probe, "fmi2Instantiate", "fmuType must be fmi2ModelExchange: this FMU implements Model Exchange only");
+    if (fmuType != fmi2ModelExchange && fmuType != fmi2CoSimulation) {
+        fail(&probe, "fmi2Instantiate", "fmuType %d is neither fmi2ModelExchange nor fmi2CoSimulation", (int)fmuType);
         return NULL;
     }
     if (!fmuGUID || strcmp(fmuGUID, MODEL_GUID) != 0) {
@@ -175,7 +138,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     memcpy(name, instanceName, strlen(instanceName) + 1);
-    *in = (Instance){ .cb = *functions, .name = name };
+    *in = (Instance){ .cb = *functions, .name = name, .type = fmuType };
     for (int k = 0; k < N_LOG_CATEGORIES; ++k) in->log_on[k] = loggingOn;
     reset_instance(in);
     return in;
@@ -185,6 +148,7 @@ void fmi2FreeInstance(fmi2Component c)
 {
     Instance *in = (Instance *)c;
     if (!in) return;
+    cs_free(in);
     fmi2CallbackFreeMemory free_memory = in->cb.freeMemory;
     free_memory(in->name);
     free_memory(in);
@@ -200,6 +164,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     REQUIRE("fmi2SetupExperiment", !stopTimeDefined || (isfinite(stopTime) && stopTime >= startTime),
             "stopTime = %g must be finite and >= startTime = %g", stopTime, startTime);
     in->time = startTime;
+    in->tolerance = toleranceDefined ? tolerance : 0;
     return fmi2OK;
 }
 
@@ -218,12 +183,18 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
               in->model.mode.contact, in->model.mode.slip);
     in->initial_event = true;
     in->state = EventMode;
+    if (in->type == fmi2ModelExchange) return fmi2OK;
+    /* Co-Simulation does its own initial event iteration. */
+    bool changed;
+    if (handle_event(in, "fmi2ExitInitializationMode", &changed) != fmi2OK) return fmi2Error;
+    in->last_successful_time = in->time;
+    in->state = StepComplete;
     return fmi2OK;
 }
 
 fmi2Status fmi2Terminate(fmi2Component c)
 {
-    BEGIN("fmi2Terminate", SIMULATING);
+    BEGIN("fmi2Terminate", SIMULATING | StepComplete);
     in->state = Terminated;
     return fmi2OK;
 }
@@ -237,8 +208,7 @@ fmi2Status fmi2Reset(fmi2Component c)
 
 /* ------------------------------------------------------ getters, setters */
 
-/* Derived values; during initialization with the mode the start state implies. */
-static Model *current(Instance *in)
+Model *current(Instance *in)
 {
     if (in->state == InitializationMode) model_initial_mode(&in->model);
     model_update_derived(&in->model);
@@ -305,7 +275,7 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[])
 {
-    BEGIN("fmi2SetReal", BEFORE_INIT_ENDS | SIMULATING);
+    BEGIN("fmi2SetReal", BEFORE_INIT_ENDS | SIMULATING | StepComplete);
     if (check_arrays(in, "fmi2SetReal", vr, nvr, value) != fmi2OK) return fmi2Error;
     /* Check all, then set all: a rejected call changes nothing. */
     for (size_t i = 0; i < nvr; ++i) {
@@ -336,19 +306,19 @@ static fmi2Status no_settable(Instance *in, const char *call, const void *vr, si
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
 {
-    BEGIN("fmi2SetInteger", BEFORE_INIT_ENDS | SIMULATING);
+    BEGIN("fmi2SetInteger", BEFORE_INIT_ENDS | SIMULATING | StepComplete);
     return no_settable(in, "fmi2SetInteger", vr, nvr, value, "Integer");
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[])
 {
-    BEGIN("fmi2SetBoolean", BEFORE_INIT_ENDS | SIMULATING);
+    BEGIN("fmi2SetBoolean", BEFORE_INIT_ENDS | SIMULATING | StepComplete);
     return no_settable(in, "fmi2SetBoolean", vr, nvr, value, "Boolean");
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
 {
-    BEGIN("fmi2SetString", BEFORE_INIT_ENDS | SIMULATING);
+    BEGIN("fmi2SetString", BEFORE_INIT_ENDS | SIMULATING | StepComplete);
     return no_settable(in, "fmi2SetString", vr, nvr, value, "String");
 }
 
@@ -452,17 +422,16 @@ static void describe_fired(Instance *in, char *text, size_t size)
     if (n == 0) snprintf(text, size, "none (time or step event)");
 }
 
-fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
+fmi2Status handle_event(Instance *in, const char *call, bool *states_changed)
 {
-    BEGIN("fmi2NewDiscreteStates", EventMode);
-    REQUIRE("fmi2NewDiscreteStates", info, "fmi2EventInfo is NULL");
     Model *m = &in->model;
     model_update_derived(m);
     char fired[512];
     describe_fired(in, fired, sizeof fired);
+    in->initial_event = false;
     const RodMode before = m->mode;
     bool moved;
-    REQUIRE("fmi2NewDiscreteStates", rod_event_update(&m->params, &m->mode, m->x, &moved),
+    REQUIRE(call, rod_event_update(&m->params, &m->mode, m->x, &moved),
             "mode decision does not settle at t = %.17g (contact = %d, mode = %+d): rules ping-pong", in->time,
             m->mode.contact, m->mode.slip);
     m->stale = true;
@@ -472,6 +441,7 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
                   before.contact, m->mode.contact, before.slip, m->mode.slip,
                   moved ? "; continuous states changed" : "");
     }
+    *states_changed = switched || moved;
     /* Zeno guard: a run of events that does not advance time is an error, not a hang. */
     const double eps = m->params.epsilon;
     const double window = eps * eps + 1e-12 * (1 + fabs(in->time));
@@ -480,26 +450,39 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
         in->events_in_window = 0;
     }
     ++in->events_in_window;
-    REQUIRE("fmi2NewDiscreteStates", in->events_in_window < MAX_EVENTS_IN_WINDOW,
+    REQUIRE(call, in->events_in_window < MAX_EVENTS_IN_WINDOW,
             "%d events between t = %.17g and %.17g (less than eps^2 = %g): the modes chatter without progress "
             "in time (last indicator %s; contact = %d, mode = %+d, theta = %g)",
             MAX_EVENTS_IN_WINDOW, in->window_start, in->time, eps * eps, fired, m->mode.contact, m->mode.slip,
             m->x[ROD_THETA]);
+    return fmi2OK;
+}
+
+void mark_restart(Instance *in)
+{
+    model_update_derived(&in->model);
+    memcpy(in->z_at_restart, in->model.z, sizeof in->z_at_restart);
+}
+
+fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
+{
+    BEGIN("fmi2NewDiscreteStates", EventMode);
+    REQUIRE("fmi2NewDiscreteStates", info, "fmi2EventInfo is NULL");
+    bool changed;
+    if (handle_event(in, "fmi2NewDiscreteStates", &changed) != fmi2OK) return fmi2Error;
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
-    info->valuesOfContinuousStatesChanged = (switched || moved) ? fmi2True : fmi2False;
+    info->valuesOfContinuousStatesChanged = changed ? fmi2True : fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0;
-    in->initial_event = false;
     return fmi2OK;
 }
 
 fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
 {
     BEGIN("fmi2EnterContinuousTimeMode", EventMode);
-    model_update_derived(&in->model);
-    memcpy(in->z_at_restart, in->model.z, sizeof in->z_at_restart);
+    mark_restart(in);
     in->state = ContinuousTimeMode;
     return fmi2OK;
 }
@@ -549,6 +532,7 @@ fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
 {
     BEGIN("fmi2GetDerivatives", READABLE);
+    INTERFACE("fmi2GetDerivatives", fmi2ModelExchange, "Model Exchange");
     if (check_nx(in, "fmi2GetDerivatives", derivatives, nx, ROD_NX) != fmi2OK) return fmi2Error;
     static const fmi2ValueReference DER[ROD_NX] = { VR_DER_X, VR_DER_V, VR_DER_Y, VR_DER_W, VR_DER_THETA,
                                                      VR_DER_PHI };
@@ -558,6 +542,7 @@ fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t ni)
 {
     BEGIN("fmi2GetEventIndicators", READABLE);
+    INTERFACE("fmi2GetEventIndicators", fmi2ModelExchange, "Model Exchange");
     if (check_nx(in, "fmi2GetEventIndicators", z, ni, ROD_NZ) != fmi2OK) return fmi2Error;
     const Model *m = current(in);
     for (size_t i = 0; i < ni; ++i) {
@@ -571,6 +556,7 @@ fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t ni)
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 {
     BEGIN("fmi2GetContinuousStates", READABLE);
+    INTERFACE("fmi2GetContinuousStates", fmi2ModelExchange, "Model Exchange");
     if (check_nx(in, "fmi2GetContinuousStates", x, nx, ROD_NX) != fmi2OK) return fmi2Error;
     memcpy(x, in->model.x, sizeof in->model.x);
     return fmi2OK;
@@ -579,52 +565,8 @@ fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real nominal[], size_t nx)
 {
     BEGIN("fmi2GetNominalsOfContinuousStates", Instantiated | READABLE);
+    INTERFACE("fmi2GetNominalsOfContinuousStates", fmi2ModelExchange, "Model Exchange");
     if (check_nx(in, "fmi2GetNominalsOfContinuousStates", nominal, nx, ROD_NX) != fmi2OK) return fmi2Error;
     rod_nominals(&in->model.params, nominal);
     return fmi2OK;
 }
-
-/* ------------------------------------------------- co-simulation: absent */
-
-fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                                       const fmi2Integer order[], const fmi2Real value[])
-{
-    (void)vr; (void)nvr; (void)order; (void)value;
-    BEGIN("fmi2SetRealInputDerivatives", ANY_BUT_FATAL);
-    return fail(in, "fmi2SetRealInputDerivatives", "Co-Simulation is not implemented by this FMU");
-}
-
-fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                                        const fmi2Integer order[], fmi2Real value[])
-{
-    (void)vr; (void)nvr; (void)order; (void)value;
-    BEGIN("fmi2GetRealOutputDerivatives", ANY_BUT_FATAL);
-    return fail(in, "fmi2GetRealOutputDerivatives", "Co-Simulation is not implemented by this FMU");
-}
-
-fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSetPrior)
-{
-    (void)t; (void)h; (void)noSetPrior;
-    BEGIN("fmi2DoStep", ANY_BUT_FATAL);
-    return fail(in, "fmi2DoStep", "Co-Simulation is not implemented by this FMU");
-}
-
-fmi2Status fmi2CancelStep(fmi2Component c)
-{
-    BEGIN("fmi2CancelStep", ANY_BUT_FATAL);
-    return fail(in, "fmi2CancelStep", "Co-Simulation is not implemented by this FMU");
-}
-
-#define STATUS_GETTER(name, type)                                                       \
-    fmi2Status name(fmi2Component c, const fmi2StatusKind s, type *value)             \
-    {                                                                                 \
-        (void)s; (void)value;                                                         \
-        BEGIN(#name, ANY_BUT_FATAL);                                                  \
-        return fail(in, #name, "Co-Simulation is not implemented by this FMU");      \
-    }
-
-STATUS_GETTER(fmi2GetStatus, fmi2Status)
-STATUS_GETTER(fmi2GetRealStatus, fmi2Real)
-STATUS_GETTER(fmi2GetIntegerStatus, fmi2Integer)
-STATUS_GETTER(fmi2GetBooleanStatus, fmi2Boolean)
-STATUS_GETTER(fmi2GetStringStatus, fmi2String)

@@ -8,7 +8,7 @@ OUTPUTS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "
 def simulate(fmu, stop_time, *, solver="CVode", rtol=1e-6, step_size=None, output_interval=None, **start):
     """One run with every output recorded, events included; fails on any NaN or infinity."""
     result = fmpy.simulate_fmu(
-        fmu, stop_time=stop_time, solver=solver, relative_tolerance=rtol, step_size=step_size,
+        fmu, fmi_type="ModelExchange", stop_time=stop_time, solver=solver, relative_tolerance=rtol, step_size=step_size,
         output_interval=output_interval, start_values=start, output=list(OUTPUTS), record_events=True)
     for name in ("time",) + OUTPUTS[:-2]:
         assert np.all(np.isfinite(result[name])), f"{name} is not finite"

@@ -22,8 +22,8 @@ def unzipdir(fmu_path, tmp_path_factory):
     return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
-def default_experiment(fmu, **kw):
-    r = fmpy.simulate_fmu(fmu, output=list(OUTPUTS), **kw)
+def default_experiment(fmu, fmi_type="ModelExchange", **kw):
+    r = fmpy.simulate_fmu(fmu, fmi_type=fmi_type, output=list(OUTPUTS), **kw)
     for name in ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy"):
         assert np.all(np.isfinite(r[name])), name
     return r

@@ -1,0 +1,154 @@
+"""Co-Simulation in the same FMU: the embedded CVODE integrates the same model
+and events as Model Exchange, for any master and any communication step."""
+import re
+import subprocess
+from ctypes import POINTER, c_double
+
+import fmpy
+import numpy as np
+import pytest
+from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.validation import validate_fmu
+
+from painleve import analytic as an
+from painleve.experiment import Case, Experiment
+from painleve.instance import instantiate
+from painleve.studies import convergence
+from conftest import ROOT
+
+STATES = ["x", "v", "y", "w", "theta", "phi"]
+
+
+@pytest.fixture(scope="module")
+def unzipdir(fmu_path, tmp_path_factory):
+    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
+
+
+class Slave:
+    """One Co-Simulation instance with its log messages."""
+
+    def __init__(self, unzipdir, tolerance=None, **start):
+        self.md = read_model_description(unzipdir)
+        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.messages = []
+        self.fmu = instantiate(unzipdir, self.md, lambda *m: self.messages.append(m), interface="CS")
+        self.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
+        self.fmu.setReal([self.vr[k] for k in start], list(start.values()))
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.t = 0.0
+
+    def step(self, h):
+        self.fmu.doStep(self.t, h)
+        self.t += h
+
+    def states(self):
+        return np.array(self.fmu.getReal([self.vr[k] for k in STATES]))
+
+
+def test_both_interfaces_declared_and_valid(fmu_path):
+    md = read_model_description(fmu_path)
+    assert md.modelExchange is not None and md.coSimulation is not None
+    assert validate_fmu(fmu_path) == []
+
+
+def test_binary_needs_only_libc_and_libm(unzipdir):
+    so = next((unzipdir / "binaries" / "linux64").glob("*.so"))
+    needed = re.findall(r"\(NEEDED\).*\[(.*)\]", subprocess.run(["readelf", "-d", so], capture_output=True,
+                                                                 text=True, check=True).stdout)
+    assert set(needed) <= {"libc.so.6", "libm.so.6"}, needed
+    symbols = subprocess.run(["nm", "-D", "--defined-only", so], capture_output=True, text=True, check=True).stdout
+    assert all(line.split()[-1].startswith("fmi2") for line in symbols.splitlines()), "only fmi2* may be exported"
+
+
+# The IWC amplifies solver errors (it follows an unstable manifold), so "the same
+# to solver tolerance" is checked as: differences below 1000 x the tolerance, at
+# two tolerances 100 apart (they shrink with it).
+@pytest.mark.parametrize("tolerance", [1e-8, 1e-10])
+def test_default_experiment_through_cosimulation_is_the_same_iwc(fmu_path, tolerance):
+    out = ["y", "w", "v", "phi", "mode", "contact"]
+    me = fmpy.simulate_fmu(fmu_path, fmi_type="ModelExchange", output=out, relative_tolerance=tolerance)
+    cs = fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", output=out, relative_tolerance=tolerance)
+    assert not cs["contact"][-1] and cs["y"][-1] > 0
+    for name in ("y", "w", "v", "phi"):
+        assert abs(cs[name][-1] - me[name][-1]) < 1000 * tolerance, name
+
+
+@pytest.mark.parametrize("tolerance", [1e-8, 1e-10])
+def test_one_step_per_millisecond_equals_a_single_step(unzipdir, tolerance):
+    fine, coarse = Slave(unzipdir, tolerance, epsilon=1e-3), Slave(unzipdir, tolerance, epsilon=1e-3)
+    for _ in range(100):
+        fine.step(1e-3)
+    coarse.step(0.1)
+    assert np.max(np.abs(fine.states() - coarse.states())) < 1000 * tolerance
+    assert fine.fmu.getRealStatus(2) == pytest.approx(0.1)        # fmi2LastSuccessfulTime
+    assert not fine.fmu.getBooleanStatus(3)                        # fmi2Terminated
+
+
+def test_events_inside_a_step_are_handled_unseen(unzipdir):
+    # A single step over the whole IWC leaves the rod in flight, modes switched inside the step.
+    rod = Slave(unzipdir, epsilon=1e-4)
+    rod.step(2e-3)
+    assert rod.fmu.getBoolean([rod.vr["contact"]]) == [False]
+    assert rod.fmu.getReal([rod.vr["w"]])[0] == pytest.approx(an.e(1.0, 1.0), rel=0.01)
+
+
+def test_wrong_communication_point_is_an_error(unzipdir):
+    rod = Slave(unzipdir)
+    with pytest.raises(FMICallException):
+        rod.fmu.doStep(0.5, 1e-3)
+    assert "is not the instance's time" in rod.messages[-1][2]
+
+
+def test_chattering_ends_the_step_with_an_error_and_the_instance_survives(unzipdir):
+    rod = Slave(unzipdir, theta=0.5908, delta=10.0, epsilon=1e-2)
+    with pytest.raises(FMICallException):
+        for _ in range(20):
+            rod.step(0.5)
+    assert "chatter without progress in time" in rod.messages[-1][2]
+    rod.fmu.reset()
+    rod.fmu.setupExperiment(startTime=0.0)
+    rod.fmu.enterInitializationMode()
+    rod.fmu.exitInitializationMode()
+    rod.t = 0.0
+    rod.step(0.1)
+    assert rod.fmu.getBoolean([rod.vr["contact"]]) == [False]
+
+
+@pytest.mark.parametrize("params", [dict(mu=3.0, theta0=1.0, delta=1.0), dict(mu=3.0, theta0=0.8, delta=0.0),
+                                    dict(alpha=2.0, mu=3.0, theta0=1.1, delta=2.0)])
+def test_theorem1_through_cosimulation_converges_like_model_exchange(fmu_path, params):
+    epsilons = [e for e in (1e-3, 1e-4, 1e-5, 1e-6) if e * (1 + params["delta"]) ** 3 <= 2e-2]
+    with Experiment(fmu_path, interface="CS") as cs, Experiment(fmu_path, interface="ME") as me:
+        by_cs, by_me = (convergence(x, Case(**params), epsilons) for x in (cs, me))
+    for a, b in zip(by_cs.outcomes, by_me.outcomes):
+        assert a.iwc and b.iwc
+        # both solvers run at rtol = eps/100 or tighter: they agree far below the eps error
+        assert abs(a.w - b.w) < 0.1 * abs(b.w_error) + 1e-9
+        assert abs(a.phi - b.phi) < 0.1 * abs(b.phi_error) + 1e-9
+    for name in ("w", "phi", "v"):
+        assert by_cs.rate(name) > 0.6, by_cs.table()
+
+
+@pytest.mark.parametrize("factor, iwc", [(1.2, True), (0.8, False)])
+def test_theorem2_through_cosimulation_same_outcome(fmu_path, factor, iwc):
+    video = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, epsilon=1e-4)
+    w10 = factor * Case(**video).w1_star
+    with Experiment(fmu_path, interface="CS") as cs, Experiment(fmu_path, interface="ME") as me:
+        a, b = cs.run(Case(w10=w10, **video)), me.run(Case(w10=w10, **video))
+    assert a.iwc == b.iwc == iwc
+    assert a.w == pytest.approx(b.w, rel=1e-3)
+
+
+def test_without_sundials_the_fmu_is_model_exchange_only(tmp_path):
+    build = tmp_path / "build"
+    configure = subprocess.run(["cmake", "-S", ROOT, "-B", build, "-DPAINLEVE_COSIMULATION=OFF",
+                                f"-DPython3_EXECUTABLE={__import__('sys').executable}"],
+                               capture_output=True, text=True, check=True)
+    assert "Co-Simulation left out" in configure.stderr
+    subprocess.run(["cmake", "--build", build], capture_output=True, check=True)
+    fmu = build / "PainleveRod.fmu"
+    md = read_model_description(fmu)
+    assert md.coSimulation is None and md.modelExchange is not None
+    assert validate_fmu(fmu) == []
