@@ -11,7 +11,7 @@ PY=$VENV/bin/python
 log() { printf '== %s\n' "$*" >&2; }
 
 # System packages the build and tests need (Debian names), installed only if missing.
-APT_PACKAGES=(python3-venv)
+APT_PACKAGES=(python3-venv libsundials-dev)
 apt_setup() {
     local missing=()
     for p in "${APT_PACKAGES[@]}"; do
