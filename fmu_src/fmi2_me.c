@@ -322,54 +322,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
     return no_settable(in, "fmi2SetString", vr, nvr, value, "String");
 }
 
-/* ------------------------------------------------ FMU state, derivatives */
-
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s)
-{
-    (void)s;
-    BEGIN("fmi2GetFMUstate", ANY_BUT_FATAL);
-    return fail(in, "fmi2GetFMUstate", "not supported (canGetAndSetFMUstate is false)");
-}
-
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s)
-{
-    (void)s;
-    BEGIN("fmi2SetFMUstate", ANY_BUT_FATAL);
-    return fail(in, "fmi2SetFMUstate", "not supported (canGetAndSetFMUstate is false)");
-}
-
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s)
-{
-    (void)s;
-    BEGIN("fmi2FreeFMUstate", ANY_BUT_FATAL);
-    return fail(in, "fmi2FreeFMUstate", "not supported (canGetAndSetFMUstate is false)");
-}
-
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *size)
-{
-    (void)s;
-    (void)size;
-    BEGIN("fmi2SerializedFMUstateSize", ANY_BUT_FATAL);
-    return fail(in, "fmi2SerializedFMUstateSize", "not supported (canSerializeFMUstate is false)");
-}
-
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte bytes[], size_t size)
-{
-    (void)s;
-    (void)bytes;
-    (void)size;
-    BEGIN("fmi2SerializeFMUstate", ANY_BUT_FATAL);
-    return fail(in, "fmi2SerializeFMUstate", "not supported (canSerializeFMUstate is false)");
-}
-
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size, fmi2FMUstate *s)
-{
-    (void)bytes;
-    (void)size;
-    (void)s;
-    BEGIN("fmi2DeSerializeFMUstate", ANY_BUT_FATAL);
-    return fail(in, "fmi2DeSerializeFMUstate", "not supported (canSerializeFMUstate is false)");
-}
+/* ------------------------------------------------- directional derivatives */
 
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown,
