@@ -246,7 +246,7 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size
     REQUIRE(call, bytes && state, "bytes or FMUstate pointer is NULL");
     Cursor k = { .in = (const unsigned char *)bytes, .size = size };
     char magic[8], guid[64];
-    uint32_t version, guid_len, n_fields, checksum;
+    uint32_t version = 0, guid_len = 0, n_fields = 0, checksum = 0;
     REQUIRE(call, take_bytes(&k, magic, 8) && memcmp(magic, MAGIC, 8) == 0,
             "not a PainleveRod FMU state (%zu bytes, no 'PRODSTAT' header)", size);
     REQUIRE(call, take_u32(&k, &version) && version == FORMAT_VERSION,
