@@ -11,7 +11,7 @@ PY=$VENV/bin/python
 log() { printf '== %s\n' "$*" >&2; }
 
 # System packages the build and tests need (Debian names), installed only if missing.
-APT_PACKAGES=(python3-venv libsundials-dev)
+APT_PACKAGES=(python3-venv libsundials-dev clang libclang-rt-14-dev valgrind)
 apt_setup() {
     local missing=()
     for p in "${APT_PACKAGES[@]}"; do
@@ -46,7 +46,7 @@ build_fmu() {
 setup() { apt_setup; python_setup; build_fmu; }
 
 case "${1:-}" in
-    main) setup; "$PY" -m painleve.demo build/PainleveRod.fmu ;;
+    main) setup; rc=0; "$VENV/bin/painleve" validate build/PainleveRod.fmu --report out/validation.md || rc=$?; "$VENV/bin/painleve" figures --out out/figures; printf '\nvalidation report: %s\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png; the numbers in figures.json, a summary in figures.md)\n' "$ROOT/out/validation.md" "$ROOT/out/figures/"; exit $rc ;;
     test) setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
     *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;
 esac

@@ -1,0 +1,203 @@
+"""Sweeps of IWC cases over a grid or a random sample, run on dask.
+
+The driver splits the case ids still to do into batches (a few hundred cases,
+about a second of work each) and submits them to a dask cluster: a local one
+on this machine by default, or any scheduler by address, unchanged. Each
+worker process keeps one `Experiment` per FMU (fmpy's fast loop: one unzip,
+one instance, reset between cases); the FMU's bytes are sent to the workers
+once, so they need the `painleve` package but not the file. Results are
+written as batches finish (see `sweepstore`), so an interrupted sweep resumes
+without recomputing what was written."""
+import atexit
+import contextlib
+import hashlib
+import logging
+import math
+import os
+import pathlib
+import signal
+import sys
+import tempfile
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from . import analytic as an
+from .experiment import Experiment, SimulationError
+from .sweepstore import ResultStore, as_frame
+
+
+@dataclass(frozen=True)
+class FmuBlob:
+    """An FMU's bytes and their SHA-256, the form in which workers receive it."""
+    digest: str
+    data: bytes
+
+    @classmethod
+    def read(cls, path):
+        data = pathlib.Path(path).read_bytes()
+        return cls(hashlib.sha256(data).hexdigest(), data)
+
+
+_EXPERIMENTS = {}   # in each process: (FMU digest, interface) -> Experiment
+
+
+def experiment_for(blob, interface):
+    """This process's Experiment for the FMU `blob`, created on first use."""
+    key = (blob.digest, interface)
+    if key not in _EXPERIMENTS:
+        path = os.path.join(tempfile.gettempdir(), f"painleve-{blob.digest[:16]}.fmu")
+        if not os.path.exists(path):
+            tmp = f"{path}.{os.getpid()}.tmp"
+            with open(tmp, "wb") as f:
+                f.write(blob.data)
+            os.replace(tmp, path)
+        _EXPERIMENTS[key] = Experiment(path, interface=interface)
+    return _EXPERIMENTS[key]
+
+
+@atexit.register
+def _close_experiments():
+    for experiment in _EXPERIMENTS.values():
+        experiment.close()
+    _EXPERIMENTS.clear()
+
+
+def _try(f):
+    try:
+        return f()
+    except (ValueError, ArithmeticError):
+        return math.nan
+
+
+def predictions(case):
+    """The paper's predictions for a case, NaN where its hypotheses fail."""
+    w1s = _try(lambda: case.w1_star)
+    return dict(theorem=case.theorem, e=_try(lambda: case.e), predicted_w=_try(lambda: case.e * case.v0),
+                predicted_phi=_try(lambda: case.predicted_phi), w1_star=w1s,
+                predicts_iwc=None if (case.theorem == 2 and math.isnan(w1s)) else bool(case.predicts_iwc),
+                time_scale=_try(lambda: case.time_scale))
+
+
+def case_row(experiment, case, case_id):
+    """One result row: the case, what the FMU did (status 'ok'), or why it did not run
+    ('outside' the theorems' hypotheses, or 'failed' with the FMU's reason)."""
+    row = {"id": case_id, **asdict(case), **predictions(case), "status": "ok", "message": ""}
+    try:
+        case.check()
+    except an.HypothesisError as err:
+        return {**row, "status": "outside", "message": str(err)}
+    try:
+        outcome = experiment.run(case)
+    except SimulationError as err:
+        return {**row, "status": "failed", "message": str(err)}
+    except Exception as err:   # one bad case must not lose its batch
+        return {**row, "status": "failed", "message": f"{type(err).__name__}: {err}"}
+    return {**row, **outcome.as_row(), "status": "ok"}
+
+
+def run_batch(spec, ids, blob, interface="ME"):
+    """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
+    experiment = experiment_for(blob, interface)
+    return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
+
+
+@dataclass
+class SweepResult:
+    total: int
+    skipped: int        # done before this run (resumed)
+    ran: int
+    seconds: float
+    out: str
+
+
+def _batches(remaining, size):
+    for start in range(0, len(remaining), size):
+        yield remaining[start:start + size]
+
+
+def _progress(total, initial, enabled):
+    from tqdm import tqdm
+    return tqdm(total=total, initial=initial, unit="case", desc="sweep", disable=not enabled, file=sys.stderr,
+                dynamic_ncols=True, mininterval=0.5, smoothing=0.05)
+
+
+def run_sweep(spec, fmu_path, out, *, interface="ME", scheduler=None, workers=2, batch=200, serial=False,
+              progress=True, say=lambda text: print(text, file=sys.stderr)):
+    """Runs every case of `spec` not yet in `out`; returns a SweepResult."""
+    blob = FmuBlob.read(fmu_path)
+    store = ResultStore(out)
+    done = store.open({**spec.describe(), "fmu_sha256": blob.digest, "interface": interface})
+    remaining = np.setdiff1d(np.arange(spec.total, dtype=np.int64), done)
+    if len(done):
+        say(f"resuming {out}: {len(done)} of {spec.total} cases already done, {len(remaining)} to run")
+    start = time.monotonic()
+    batches = _batches(remaining, max(1, int(batch)))
+    with _progress(spec.total, len(done), progress) as bar:
+        if not len(remaining):
+            pass
+        elif serial:
+            for ids in batches:
+                df = run_batch(spec, ids, blob, interface)
+                store.append(df)
+                bar.update(len(df))
+        else:
+            _run_on_dask(spec, batches, blob, interface, store, bar, scheduler=scheduler, workers=workers, say=say)
+    return SweepResult(total=spec.total, skipped=len(done), ran=len(remaining),
+                       seconds=time.monotonic() - start, out=str(out))
+
+
+def _connect(scheduler, workers):
+    from dask.distributed import Client, LocalCluster
+    if scheduler:
+        return Client(scheduler, timeout="15s"), None
+    with _workers_ignore_ctrl_c():
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                               silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+@contextlib.contextmanager
+def _workers_ignore_ctrl_c():
+    """Worker processes started in here inherit SIGINT ignored: Ctrl-C in a terminal reaches
+    the whole process group, and it is the driver that stops the workers, cleanly."""
+    try:
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:          # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _run_on_dask(spec, batches, blob, interface, store, bar, *, scheduler, workers, say):
+    from dask.distributed import as_completed
+    client, cluster = _connect(scheduler, workers)
+    try:
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+        say(f"dask: {'scheduler ' + scheduler if scheduler else 'local cluster'} with {n_workers} worker(s)")
+        blob_future = client.scatter(blob, broadcast=True, hash=False)
+
+        def submit(ids):
+            return client.submit(run_batch, spec, ids, blob_future, interface, pure=False)
+        # Keep a few batches per worker in flight: enough to stay busy, few enough to stop quickly.
+        queue = as_completed([submit(ids) for _, ids in zip(range(3 * n_workers), batches)])
+        for future in queue:
+            df = future.result()
+            store.append(df)
+            bar.update(len(df))
+            future.release()
+            nxt = next(batches, None)
+            if nxt is not None:
+                queue.add(submit(nxt))
+    finally:
+        try:    # each worker frees its FMU instance and extracted files (workers do not run atexit)
+            client.run(_close_experiments)
+        except Exception:
+            pass
+        client.close()
+        if cluster is not None:
+            cluster.close()
