@@ -25,15 +25,12 @@ What it knows of fmpy 0.3.32 and chooses for the user:
   counts are not visible there (reported as -1), durations to eps/2.
 """
 import math
-import shutil
-import tempfile
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from fmpy import extract, read_model_description, simulate_fmu
 
 from . import analytic as an
-from .instance import FMI2_ERROR, instantiate
+from .instance import LoadedFMU, SimulationError
 
 OUTPUTS = ["v", "y", "w", "theta", "phi", "mode", "contact"]
 
@@ -133,42 +130,17 @@ class Outcome:
         return row
 
 
-class SimulationError(RuntimeError):
-    """The FMU or its solver gave up on a case; the message carries the FMU's own words."""
-
-
-class Experiment:
+class Experiment(LoadedFMU):
     """Runs IWC cases on one extracted FMU and one instance (fmpy's fast loop)."""
 
     def __init__(self, fmu_path, *, interface="ME", solver="CVode", relative_tolerance=None, steps_per_epsilon=100):
         if solver not in ("CVode", "Euler"):
             raise ValueError(f"solver must be 'CVode' or 'Euler', not {solver!r}")
-        self.interface = interface
+        super().__init__(fmu_path, interface=interface)
         self.solver = solver
         self.relative_tolerance = relative_tolerance
         self.steps_per_epsilon = steps_per_epsilon
-        self.model_description = read_model_description(fmu_path)
-        self._tmp = tempfile.mkdtemp(prefix="painleve-")
-        self.unzipdir = extract(fmu_path, self._tmp)
-        self._errors = []
-        self.fmu = instantiate(self.unzipdir, self.model_description, self._log, interface=interface)
-        vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
-        self._vr_yw, self._vr_contact = [vr["y"], vr["w"]], [vr["contact"]]
-        self._used = False
-
-    def _log(self, status, category, message):
-        if status >= FMI2_ERROR:
-            self._errors.append(message)
-
-    def close(self):
-        self.fmu.freeInstance()
-        shutil.rmtree(self._tmp, ignore_errors=True)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
+        self._vr_yw, self._vr_contact = [self.vr["y"], self.vr["w"]], [self.vr["contact"]]
 
     def _back_on_floor(self):
         """fmpy's step_finished callback: stop one step after the rod, having touched,
@@ -202,19 +174,8 @@ class Experiment:
     def simulate(self, case):
         """The raw trajectory of one case (fmpy's structured array), events included."""
         case.check()
-        if self._used:
-            self.fmu.reset()
-        self._used = True
-        self._errors.clear()
-        try:
-            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.fmu,
-                                fmi_type="CoSimulation" if self.interface == "CS" else "ModelExchange",
-                                solver=self.solver, start_values=case.start_values(), output=OUTPUTS,
-                                record_events=True, step_finished=self._back_on_floor(), validate=False,
-                                **self._solver_settings(case))
-        except Exception as err:
-            said = self._errors[-1] if self._errors else str(err)
-            raise SimulationError(f"{case}: the FMU stopped: {said}") from err
+        return super().simulate(case, solver=self.solver, start_values=case.start_values(), output=OUTPUTS,
+                                step_finished=self._back_on_floor(), **self._solver_settings(case))
 
     def run(self, case):
         """One case, reduced to its Outcome."""

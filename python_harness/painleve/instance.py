@@ -4,7 +4,10 @@ fmpy's native logger proxy keeps one logger for the whole process, so with it
 the last instance created would receive every instance's messages. The
 PainleveRod FMU formats its messages itself (a literal '%' arrives as '%%'),
 so each instance gets its Python logger directly."""
-from fmpy import calloc, free
+import shutil
+import tempfile
+
+from fmpy import calloc, extract, free, read_model_description, simulate_fmu
 from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
@@ -32,3 +35,51 @@ def instantiate(unzipdir, model_description, on_message, *, interface="ME", name
               modelIdentifier=kind.modelIdentifier, instanceName=name)
     fmu.instantiate(callbacks=callbacks, loggingOn=logging_on)
     return fmu
+
+
+class SimulationError(RuntimeError):
+    """The FMU or its solver gave up on a run; the message carries the FMU's own words."""
+
+
+class LoadedFMU:
+    """One extracted FMU and one instance, reset between runs (fmpy's fast loop),
+    so a study of thousands of runs pays the unzip and the load once."""
+
+    def __init__(self, fmu_path, *, interface="ME"):
+        self.interface = interface
+        self.model_description = read_model_description(fmu_path)
+        self._tmp = tempfile.mkdtemp(prefix="painleve-")
+        self.unzipdir = extract(fmu_path, self._tmp)
+        self._errors = []
+        self.fmu = instantiate(self.unzipdir, self.model_description, self._log, interface=interface)
+        self.vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
+        self._used = False
+
+    def _log(self, status, category, message):
+        if status >= FMI2_ERROR:
+            self._errors.append(message)
+
+    def close(self):
+        self.fmu.freeInstance()
+        shutil.rmtree(self._tmp, ignore_errors=True)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def simulate(self, what, **kwargs):
+        """fmpy.simulate_fmu on the loaded instance, events recorded; a failure raises
+        SimulationError naming `what` and quoting the FMU's last error message."""
+        if self._used:
+            self.fmu.reset()
+        self._used = True
+        self._errors.clear()
+        try:
+            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.fmu,
+                                fmi_type="CoSimulation" if self.interface == "CS" else "ModelExchange",
+                                record_events=True, validate=False, **kwargs)
+        except Exception as err:
+            said = self._errors[-1] if self._errors else str(err)
+            raise SimulationError(f"{what}: the FMU stopped: {said}") from err
