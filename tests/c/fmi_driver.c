@@ -1,0 +1,1155 @@
+/* PainleveRod through its C ABI, as an importer loads it (dlopen): every FMI
+ * function in every instance state, NULL arguments, bad value references,
+ * nvr = 0 and huge nvr, bad values, failing allocations, many live instances,
+ * and instantiate/simulate/free cycles with a flat resident set.
+ *
+ * Built with AddressSanitizer + UBSan (fmi_driver_asan) and plain for
+ * valgrind and the memory soak (fmi_driver); tests/test_c_robustness.py runs it.
+ *
+ *   fmi_driver [--lib PATH] [--cycles N] [--max-rss-growth-kb K] [--no-api]
+ *
+ * Exit status 0 only if every check passed. */
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fmi_harness.h"
+
+static FmiApi api;
+static const FmiApi *const f = &api;
+static long checks, failures;
+
+static bool check_(bool ok, const char *file, int line, const char *fmt, ...)
+{
+    ++checks;
+    if (ok) return true;
+    ++failures;
+    fprintf(stderr, "FAIL %s:%d: ", file, line);
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return false;
+}
+
+#define CHECK(cond, ...) check_((cond), __FILE__, __LINE__, __VA_ARGS__)
+
+static const char *status_name(fmi2Status s)
+{
+    static const char *const names[] = { "fmi2OK", "fmi2Warning", "fmi2Discard", "fmi2Error", "fmi2Fatal",
+                                         "fmi2Pending" };
+    return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "(not an fmi2Status)";
+}
+
+/* ------------------------------------------------------ instance states */
+
+enum { S_INSTANTIATED, S_INIT, S_EVENT, S_CONTINUOUS, S_EVENT_AGAIN, S_TERMINATED, S_ERROR, N_STATES };
+static const char *const STATE_NAME[N_STATES] = { "Instantiated", "InitializationMode", "EventMode (initial)",
+                                                  "ContinuousTimeMode", "EventMode (after integration)",
+                                                  "Terminated", "Error" };
+#define B(s) (1u << (s))
+#define I_ B(S_INSTANTIATED)
+#define N_ B(S_INIT)
+#define E_ (B(S_EVENT) | B(S_EVENT_AGAIN))
+#define C_ B(S_CONTINUOUS)
+#define T_ B(S_TERMINATED)
+#define X_ B(S_ERROR)
+#define ALL_ (I_ | N_ | E_ | C_ | T_ | X_)
+#define READABLE_ (N_ | E_ | C_ | T_ | X_)
+
+/* A new instance brought to `state` by the calls an importer makes. */
+static fmi2Component instance_in(int state)
+{
+    fmi2Component c = harness_instantiate(f, "rod");
+    if (!CHECK(c != NULL, "fmi2Instantiate failed: %s", harness.last_message)) return NULL;
+    fmi2Status st = fmi2OK;
+    bool changed;
+    double x[ROD_NX];
+    if (state >= S_INIT) {
+        st = f->SetupExperiment(c, fmi2True, 1e-6, 0, fmi2True, 1);
+        if (st == fmi2OK) st = f->EnterInitializationMode(c);
+    }
+    if (state >= S_EVENT && st == fmi2OK) st = f->ExitInitializationMode(c);
+    if (state >= S_CONTINUOUS && st == fmi2OK) st = harness_event_iteration(f, c, &changed);
+    if (state >= S_EVENT_AGAIN && st == fmi2OK) {
+        /* A short Euler step with the default epsilon, then an event. */
+        double dx[ROD_NX];
+        st = f->GetContinuousStates(c, x, ROD_NX);
+        if (st == fmi2OK) st = f->GetDerivatives(c, dx, ROD_NX);
+        for (int i = 0; i < ROD_NX; ++i) x[i] += 1e-7 * dx[i];
+        if (st == fmi2OK) st = f->SetTime(c, 1e-7);
+        if (st == fmi2OK) st = f->SetContinuousStates(c, x, ROD_NX);
+        if (st == fmi2OK) st = f->EnterEventMode(c);
+    }
+    if (state == S_TERMINATED && st == fmi2OK) st = f->Terminate(c);
+    if (state == S_ERROR && st == fmi2OK) {
+        /* A fixed parameter set during integration is an error. */
+        const fmi2ValueReference vr = VR_EPSILON;
+        const double eps = 1e-3;
+        st = f->SetReal(c, &vr, 1, &eps) == fmi2Error ? fmi2OK : fmi2Fatal;
+    }
+    if (!CHECK(st == fmi2OK, "reaching state %s: %s (%s)", STATE_NAME[state], status_name(st),
+               harness.last_message)) {
+        f->FreeInstance(c);
+        return NULL;
+    }
+    return c;
+}
+
+static void free_instance(fmi2Component c)
+{
+    f->FreeInstance(c);
+    CHECK(harness.live == 0, "%ld blocks allocated through allocateMemory are not freed after fmi2FreeInstance",
+          harness.live);
+}
+
+/* After an fmi2Error: a message naming the call, and the Error state (no
+ * simulation call accepted, getters still are). */
+static void check_error_handling(fmi2Component c, const char *what, long errors_before)
+{
+    CHECK(harness.error_messages > errors_before, "%s returned fmi2Error without logging an error", what);
+    CHECK(strstr(harness.last_message, "fmi2") != NULL, "%s: error message names no call: '%s'", what,
+          harness.last_message);
+    double x[ROD_NX];
+    CHECK(f->SetTime(c, 0) == fmi2Error, "%s: fmi2SetTime accepted in the Error state", what);
+    CHECK(f->EnterContinuousTimeMode(c) == fmi2Error, "%s: fmi2EnterContinuousTimeMode accepted in the Error state",
+          what);
+    CHECK(f->SetReal(c, NULL, 0, NULL) == fmi2Error, "%s: fmi2SetReal accepted in the Error state", what);
+    CHECK(f->GetContinuousStates(c, x, ROD_NX) == fmi2OK, "%s: fmi2GetContinuousStates refused in the Error state",
+          what);
+}
+
+/* fmi2Reset from any state gives an instance that simulates. */
+static void check_reset_recovers(fmi2Component c, const char *what)
+{
+    if (!CHECK(f->Reset(c) == fmi2OK, "%s: fmi2Reset failed", what)) return;
+    EulerSim s = { .c = c };
+    const fmi2Status st = harness_simulate(f, &s, 0.1, 5e-3, 20);
+    CHECK(st == fmi2OK, "%s: simulation after fmi2Reset: %s (%s)", what, status_name(st), harness.last_message);
+}
+
+/* ---------------------------------------- every function in every state */
+
+typedef fmi2Status CallFn(fmi2Component c);
+
+static fmi2Status call_set_debug_logging_all(fmi2Component c) { return f->SetDebugLogging(c, fmi2True, 0, NULL); }
+static fmi2Status call_set_debug_logging_one(fmi2Component c)
+{
+    const fmi2String cat[] = { "logEvents" };
+    return f->SetDebugLogging(c, fmi2True, 1, cat);
+}
+static fmi2Status call_setup_experiment(fmi2Component c) { return f->SetupExperiment(c, fmi2True, 1e-6, 0, fmi2True, 1); }
+static fmi2Status call_enter_init(fmi2Component c) { return f->EnterInitializationMode(c); }
+static fmi2Status call_exit_init(fmi2Component c) { return f->ExitInitializationMode(c); }
+static fmi2Status call_terminate(fmi2Component c) { return f->Terminate(c); }
+static fmi2Status call_reset(fmi2Component c) { return f->Reset(c); }
+
+static fmi2Status call_get_real(fmi2Component c)
+{
+    fmi2ValueReference vr[N_REALS];
+    double v[N_REALS];
+    for (unsigned i = 0; i < N_REALS; ++i) vr[i] = i;
+    const fmi2Status st = f->GetReal(c, vr, N_REALS, v);
+    for (unsigned i = 0; st == fmi2OK && i < N_REALS; ++i) CHECK(isfinite(v[i]), "Real %u = %g", i, v[i]);
+    return st;
+}
+static fmi2Status call_get_integer(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_MODE;
+    fmi2Integer v = 99;
+    const fmi2Status st = f->GetInteger(c, &vr, 1, &v);
+    if (st == fmi2OK) CHECK(v >= -1 && v <= 1, "mode = %d", v);
+    return st;
+}
+static fmi2Status call_get_boolean(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_CONTACT;
+    fmi2Boolean v = 99;
+    const fmi2Status st = f->GetBoolean(c, &vr, 1, &v);
+    if (st == fmi2OK) CHECK(v == fmi2True || v == fmi2False, "contact = %d", v);
+    return st;
+}
+static fmi2Status call_get_string(fmi2Component c) { return f->GetString(c, NULL, 0, NULL); }
+static fmi2Status call_set_epsilon(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_EPSILON;
+    const double v = 1e-3;
+    return f->SetReal(c, &vr, 1, &v);
+}
+static fmi2Status call_set_theta(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_THETA;
+    const double v = 1.0;
+    return f->SetReal(c, &vr, 1, &v);
+}
+static fmi2Status call_set_real_none(fmi2Component c) { return f->SetReal(c, NULL, 0, NULL); }
+static fmi2Status call_set_integer_none(fmi2Component c) { return f->SetInteger(c, NULL, 0, NULL); }
+static fmi2Status call_set_boolean_none(fmi2Component c) { return f->SetBoolean(c, NULL, 0, NULL); }
+static fmi2Status call_set_string_none(fmi2Component c) { return f->SetString(c, NULL, 0, NULL); }
+static fmi2Status call_set_mode(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_MODE;
+    const fmi2Integer v = 0;
+    return f->SetInteger(c, &vr, 1, &v);
+}
+static fmi2Status call_set_contact(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_CONTACT;
+    const fmi2Boolean v = fmi2True;
+    return f->SetBoolean(c, &vr, 1, &v);
+}
+static fmi2Status call_set_normal_force(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_F_N;
+    const double v = 0;
+    return f->SetReal(c, &vr, 1, &v);
+}
+
+static fmi2Status worst(fmi2Status a, fmi2Status b) { return a > b ? a : b; }
+
+/* Get, set, serialize, deserialize and free an FMU state, as far as the FMU
+ * supports it; whatever it hands out is given back. */
+static fmi2Status call_fmu_state(fmi2Component c)
+{
+    fmi2FMUstate s = NULL;
+    fmi2Status st = f->GetFMUstate(c, &s);
+    if (st > fmi2Warning) return st;
+    st = worst(st, f->SetFMUstate(c, s));
+    size_t size = 0;
+    if (f->SerializedFMUstateSize(c, s, &size) <= fmi2Warning) {
+        fmi2Byte *bytes = malloc(size ? size : 1);
+        if (bytes && f->SerializeFMUstate(c, s, bytes, size) <= fmi2Warning) {
+            fmi2FMUstate t = NULL;
+            if (f->DeSerializeFMUstate(c, bytes, size, &t) <= fmi2Warning) {
+                st = worst(st, f->SetFMUstate(c, t));
+                st = worst(st, f->FreeFMUstate(c, &t));
+            }
+        }
+        free(bytes);
+    }
+    return worst(st, f->FreeFMUstate(c, &s));
+}
+static fmi2Status call_directional_derivative(fmi2Component c)
+{
+    fmi2ValueReference unknown[ROD_NX], known[ROD_NX];
+    double dv_known[ROD_NX], dv_unknown[ROD_NX];
+    for (int i = 0; i < ROD_NX; ++i) {
+        unknown[i] = VR_DER_X + (unsigned)i;
+        known[i] = VR_X + (unsigned)i;
+        dv_known[i] = 1.0 / (1 + i);
+    }
+    const fmi2Status st = f->GetDirectionalDerivative(c, unknown, ROD_NX, known, ROD_NX, dv_known, dv_unknown);
+    for (int i = 0; st == fmi2OK && i < ROD_NX; ++i) CHECK(isfinite(dv_unknown[i]), "dv_unknown[%d]", i);
+    return st;
+}
+static fmi2Status call_enter_event_mode(fmi2Component c) { return f->EnterEventMode(c); }
+static fmi2Status call_new_discrete_states(fmi2Component c)
+{
+    fmi2EventInfo info;
+    return f->NewDiscreteStates(c, &info);
+}
+static fmi2Status call_enter_continuous(fmi2Component c) { return f->EnterContinuousTimeMode(c); }
+static fmi2Status call_completed_step(fmi2Component c)
+{
+    fmi2Boolean enter = 7, terminate = 7;
+    return f->CompletedIntegratorStep(c, fmi2True, &enter, &terminate);
+}
+static fmi2Status call_set_time(fmi2Component c) { return f->SetTime(c, 1e-9); }
+static fmi2Status call_set_states(fmi2Component c)
+{
+    const double x[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
+    return f->SetContinuousStates(c, x, ROD_NX);
+}
+static fmi2Status call_get_array(fmi2Component c, fmi2GetDerivativesTYPE *get, size_t n)
+{
+    double v[8] = { 0 };
+    const fmi2Status st = get(c, v, n);
+    for (size_t i = 0; st == fmi2OK && i < n; ++i) CHECK(isfinite(v[i]), "element %zu = %g", i, v[i]);
+    return st;
+}
+static fmi2Status call_get_derivatives(fmi2Component c) { return call_get_array(c, f->GetDerivatives, ROD_NX); }
+static fmi2Status call_get_indicators(fmi2Component c) { return call_get_array(c, f->GetEventIndicators, ROD_NZ); }
+static fmi2Status call_get_states(fmi2Component c) { return call_get_array(c, f->GetContinuousStates, ROD_NX); }
+static fmi2Status call_get_nominals(fmi2Component c)
+{
+    return call_get_array(c, f->GetNominalsOfContinuousStates, ROD_NX);
+}
+static fmi2Status call_set_input_derivatives(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_X;
+    const fmi2Integer order = 1;
+    const double v = 0;
+    return f->SetRealInputDerivatives(c, &vr, 1, &order, &v);
+}
+static fmi2Status call_get_output_derivatives(fmi2Component c)
+{
+    const fmi2ValueReference vr = VR_Y;
+    const fmi2Integer order = 1;
+    double v = 0;
+    return f->GetRealOutputDerivatives(c, &vr, 1, &order, &v);
+}
+static fmi2Status call_do_step(fmi2Component c) { return f->DoStep(c, 0, 1e-3, fmi2True); }
+static fmi2Status call_cancel_step(fmi2Component c) { return f->CancelStep(c); }
+static fmi2Status call_get_statuses(fmi2Component c)
+{
+    fmi2Status s;
+    fmi2Real r;
+    fmi2Integer i;
+    fmi2Boolean b;
+    fmi2String str;
+    fmi2Status st = f->GetStatus(c, fmi2DoStepStatus, &s);
+    if (st < fmi2Error) st = worst(st, f->GetRealStatus(c, fmi2LastSuccessfulTime, &r));
+    if (st < fmi2Error) st = worst(st, f->GetIntegerStatus(c, fmi2DoStepStatus, &i));
+    if (st < fmi2Error) st = worst(st, f->GetBooleanStatus(c, fmi2Terminated, &b));
+    if (st < fmi2Error) st = worst(st, f->GetStringStatus(c, fmi2PendingStatus, &str));
+    return st;
+}
+
+/* Where a call with these (valid) arguments must succeed and where it must
+ * fail (FMI 2.0 §3.2.3); states in neither mask may go either way. */
+typedef struct {
+    const char *name;
+    CallFn *call;
+    unsigned ok_in, error_in;
+} CallCase;
+
+static const CallCase CALLS[] = {
+    { "fmi2SetDebugLogging(all)", call_set_debug_logging_all, ALL_, 0 },
+    { "fmi2SetDebugLogging(logEvents)", call_set_debug_logging_one, ALL_, 0 },
+    { "fmi2SetupExperiment", call_setup_experiment, I_, ALL_ & ~I_ },
+    { "fmi2EnterInitializationMode", call_enter_init, I_, ALL_ & ~I_ },
+    { "fmi2ExitInitializationMode", call_exit_init, N_, ALL_ & ~N_ },
+    { "fmi2Terminate", call_terminate, E_ | C_, I_ | N_ | T_ | X_ },
+    { "fmi2Reset", call_reset, ALL_, 0 },
+    { "fmi2GetReal(all Reals)", call_get_real, READABLE_, I_ },
+    { "fmi2GetInteger(mode)", call_get_integer, READABLE_, I_ },
+    { "fmi2GetBoolean(contact)", call_get_boolean, READABLE_, I_ },
+    { "fmi2GetString(nvr = 0)", call_get_string, READABLE_, I_ },
+    { "fmi2SetReal(epsilon)", call_set_epsilon, I_ | N_, E_ | C_ | T_ | X_ },
+    { "fmi2SetReal(theta)", call_set_theta, I_ | N_, E_ | C_ | T_ | X_ },
+    { "fmi2SetReal(nvr = 0)", call_set_real_none, I_ | N_ | E_ | C_, T_ | X_ },
+    { "fmi2SetInteger(nvr = 0)", call_set_integer_none, I_ | N_ | E_ | C_, T_ | X_ },
+    { "fmi2SetBoolean(nvr = 0)", call_set_boolean_none, I_ | N_ | E_ | C_, T_ | X_ },
+    { "fmi2SetString(nvr = 0)", call_set_string_none, I_ | N_ | E_ | C_, T_ | X_ },
+    { "fmi2SetInteger(mode)", call_set_mode, 0, ALL_ },
+    { "fmi2SetBoolean(contact)", call_set_contact, 0, ALL_ },
+    { "fmi2SetReal(F_N)", call_set_normal_force, 0, ALL_ },
+    { "fmi2Get/Set/Serialize/DeSerialize/FreeFMUstate", call_fmu_state, 0, 0 },
+    { "fmi2GetDirectionalDerivative", call_directional_derivative, READABLE_, I_ },
+    { "fmi2EnterEventMode", call_enter_event_mode, E_ | C_, I_ | N_ | T_ | X_ },
+    { "fmi2NewDiscreteStates", call_new_discrete_states, E_, ALL_ & ~E_ },
+    { "fmi2EnterContinuousTimeMode", call_enter_continuous, E_, ALL_ & ~E_ },
+    { "fmi2CompletedIntegratorStep", call_completed_step, C_, ALL_ & ~C_ },
+    { "fmi2SetTime", call_set_time, E_ | C_, I_ | T_ | X_ },
+    { "fmi2SetContinuousStates", call_set_states, C_, ALL_ & ~C_ },
+    { "fmi2GetDerivatives", call_get_derivatives, READABLE_, I_ },
+    { "fmi2GetEventIndicators", call_get_indicators, READABLE_, I_ },
+    { "fmi2GetContinuousStates", call_get_states, READABLE_, I_ },
+    { "fmi2GetNominalsOfContinuousStates", call_get_nominals, I_ | E_ | C_ | T_ | X_, 0 },
+    /* Co-Simulation's calls on a Model Exchange instance. */
+    { "fmi2SetRealInputDerivatives", call_set_input_derivatives, 0, 0 },
+    { "fmi2GetRealOutputDerivatives", call_get_output_derivatives, 0, 0 },
+    { "fmi2DoStep", call_do_step, 0, 0 },
+    { "fmi2CancelStep", call_cancel_step, 0, 0 },
+    { "fmi2Get*Status", call_get_statuses, 0, 0 },
+};
+#define N_CALLS (sizeof CALLS / sizeof CALLS[0])
+
+static void test_every_function_in_every_state(void)
+{
+    for (int state = 0; state < N_STATES; ++state) {
+        fmi2Component c = instance_in(state);
+        if (c) free_instance(c); /* fmi2FreeInstance straight from each state */
+        for (size_t k = 0; k < N_CALLS; ++k) {
+            const CallCase *cc = &CALLS[k];
+            fmi2Component c = instance_in(state);
+            if (!c) continue;
+            char what[160];
+            snprintf(what, sizeof what, "%s in %s", cc->name, STATE_NAME[state]);
+            const long errors_before = harness.error_messages;
+            const fmi2Status st = cc->call(c);
+            CHECK(st >= fmi2OK && st <= fmi2Fatal, "%s returned %d", what, (int)st);
+            if (cc->ok_in & B(state))
+                CHECK(st == fmi2OK, "%s: %s, expected fmi2OK (%s)", what, status_name(st), harness.last_message);
+            if (cc->error_in & B(state)) CHECK(st == fmi2Error, "%s: %s, expected fmi2Error", what, status_name(st));
+            if (st == fmi2Error) check_error_handling(c, what, errors_before);
+            check_reset_recovers(c, what);
+            free_instance(c);
+        }
+    }
+}
+
+/* Every call with instance NULL fails and touches nothing. */
+static void test_null_instance(void)
+{
+    for (size_t k = 0; k < N_CALLS; ++k) {
+        const fmi2Status st = CALLS[k].call(NULL);
+        CHECK(st == fmi2Error || st == fmi2Fatal, "%s on a NULL instance: %s", CALLS[k].name, status_name(st));
+    }
+    f->FreeInstance(NULL);
+}
+
+/* ------------------------------------------------------ NULL arguments */
+
+/* Runs `expr` (which uses c) on a new instance in `state` and checks its status. */
+#define EXPECT_IN(state, expected, expr)                                                                   \
+    do {                                                                                                   \
+        fmi2Component c = instance_in(state);                                                              \
+        if (!c) break;                                                                                     \
+        const long errors_before_ = harness.error_messages;                                                \
+        const fmi2Status st_ = (expr);                                                                     \
+        CHECK(st_ == (expected), "%s in %s: %s, expected %s", #expr, STATE_NAME[state], status_name(st_), \
+              status_name(expected));                                                                      \
+        if (st_ == fmi2Error) check_error_handling(c, #expr, errors_before_);                              \
+        free_instance(c);                                                                                  \
+    } while (0)
+
+static void test_null_arguments(void)
+{
+    fmi2ValueReference vr[1] = { VR_EPSILON };
+    double r[ROD_NX + 1] = { 1e-3, 1, 0, 0, 1, 0.5, 0 };
+    fmi2Integer i[1];
+    fmi2Boolean b[1];
+    fmi2String s[1] = { "x" };
+    const fmi2String null_category[1] = { NULL };
+    fmi2FMUstate state = NULL;
+    size_t size;
+
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetDebugLogging(c, fmi2True, 2, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetDebugLogging(c, fmi2True, 1, null_category));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetDebugLogging(c, fmi2True, SIZE_MAX, NULL));
+
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, NULL, 1, r));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, vr, 1, NULL));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetInteger(c, NULL, 1, i));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetInteger(c, vr, 1, NULL));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetBoolean(c, NULL, 1, b));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetBoolean(c, vr, 1, NULL));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetString(c, NULL, 1, s));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetString(c, vr, 1, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, NULL, 1, r));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, vr, 1, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetInteger(c, NULL, 1, i));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetInteger(c, vr, 1, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetBoolean(c, NULL, 1, b));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetBoolean(c, vr, 1, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetString(c, NULL, 1, s));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetString(c, vr, 1, NULL));
+
+    EXPECT_IN(S_EVENT, fmi2Error, f->NewDiscreteStates(c, NULL));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->CompletedIntegratorStep(c, fmi2True, NULL, b));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->CompletedIntegratorStep(c, fmi2True, b, NULL));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->CompletedIntegratorStep(c, fmi2False, NULL, NULL));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetContinuousStates(c, NULL, ROD_NX));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetDerivatives(c, NULL, ROD_NX));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetEventIndicators(c, NULL, ROD_NZ));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetContinuousStates(c, NULL, ROD_NX));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetNominalsOfContinuousStates(c, NULL, ROD_NX));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->GetNominalsOfContinuousStates(c, NULL, ROD_NX));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, NULL, 1, vr, 1, r, r));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, vr, 1, NULL, 1, r, r));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, vr, 1, vr, 1, NULL, r));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, vr, 1, vr, 1, r, NULL));
+
+    /* Calls whose support is optional: any status, but no crash or read. */
+    fmi2Status any;
+    fmi2Component c = instance_in(S_EVENT);
+    if (c) {
+        any = f->GetFMUstate(c, NULL);
+        any = f->SetFMUstate(c, NULL);
+        any = f->FreeFMUstate(c, NULL);
+        any = f->FreeFMUstate(c, &state);
+        any = f->SerializedFMUstateSize(c, NULL, &size);
+        any = f->SerializedFMUstateSize(c, NULL, NULL);
+        any = f->SerializeFMUstate(c, NULL, NULL, 16);
+        any = f->DeSerializeFMUstate(c, NULL, 16, &state);
+        any = f->DeSerializeFMUstate(c, (const fmi2Byte *)"garbage!", 8, &state);
+        if (any <= fmi2Warning) any = f->FreeFMUstate(c, &state);
+        any = f->DeSerializeFMUstate(c, (const fmi2Byte *)"garbage!", 8, NULL);
+        any = f->SetRealInputDerivatives(c, NULL, 3, NULL, NULL);
+        any = f->GetRealOutputDerivatives(c, NULL, 3, NULL, NULL);
+        any = f->GetStatus(c, fmi2DoStepStatus, NULL);
+        any = f->GetRealStatus(c, fmi2LastSuccessfulTime, NULL);
+        any = f->GetIntegerStatus(c, fmi2DoStepStatus, NULL);
+        any = f->GetBooleanStatus(c, fmi2Terminated, NULL);
+        any = f->GetStringStatus(c, fmi2PendingStatus, NULL);
+        (void)any;
+        free_instance(c);
+    }
+}
+
+/* -------------------------------------------- value references and nvr */
+
+static void test_value_references(void)
+{
+    static const fmi2ValueReference NOT_REAL[] = { N_REALS, VR_MODE, VR_CONTACT, VR_COUNT, 1000, 0x80000000u,
+                                                   UINT_MAX };
+    double r[2] = { 0 };
+    fmi2Integer i[2] = { 0 };
+    fmi2Boolean b[2] = { 0 };
+    fmi2String s[2] = { NULL, NULL };
+    for (size_t k = 0; k < sizeof NOT_REAL / sizeof NOT_REAL[0]; ++k) {
+        const fmi2ValueReference *vr = &NOT_REAL[k];
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, vr, 1, r));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, vr, 1, r));
+    }
+    /* Integer and Boolean ones of the wrong type or out of range; none is settable. */
+    static const fmi2ValueReference NOT_INTEGER[] = { 0, VR_EPSILON, VR_CONTACT, VR_COUNT, UINT_MAX };
+    static const fmi2ValueReference NOT_BOOLEAN[] = { 0, VR_EPSILON, VR_MODE, VR_COUNT, UINT_MAX };
+    static const fmi2ValueReference ANY[] = { 0, VR_MODE, VR_CONTACT, VR_COUNT, UINT_MAX };
+    for (size_t k = 0; k < sizeof ANY / sizeof ANY[0]; ++k) {
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetInteger(c, &NOT_INTEGER[k], 1, i));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetBoolean(c, &NOT_BOOLEAN[k], 1, b));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetString(c, &ANY[k], 1, s));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetInteger(c, &ANY[k], 1, i));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetBoolean(c, &ANY[k], 1, b));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetString(c, &ANY[k], 1, s));
+    }
+    /* Calculated variables are not settable. */
+    static const fmi2ValueReference CALCULATED[] = { VR_DER_X, VR_DER_PHI, VR_F_N, VR_F_T, VR_ENERGY };
+    for (size_t k = 0; k < sizeof CALCULATED / sizeof CALCULATED[0]; ++k)
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, &CALCULATED[k], 1, r));
+    /* Directional derivatives of anything but derivatives by states. */
+    const fmi2ValueReference der = VR_DER_W, state = VR_Y, bad = UINT_MAX, param = VR_EPSILON;
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, &bad, 1, &state, 1, r, r + 1));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, &der, 1, &bad, 1, r, r + 1));
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, &der, 1, &param, 1, r, r + 1));
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetDirectionalDerivative(c, &der, 1, &state, 1, r, r + 1));
+}
+
+static void test_nvr_zero_and_huge(void)
+{
+    /* nvr = 0: nothing is read, NULL arrays are fine. */
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetReal(c, NULL, 0, NULL));
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetInteger(c, NULL, 0, NULL));
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetBoolean(c, NULL, 0, NULL));
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetString(c, NULL, 0, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetReal(c, NULL, 0, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetInteger(c, NULL, 0, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetBoolean(c, NULL, 0, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetString(c, NULL, 0, NULL));
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetDirectionalDerivative(c, NULL, 0, NULL, 0, NULL, NULL));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetDebugLogging(c, fmi2False, 0, NULL));
+
+    /* Huge nvr with NULL arrays: an error before any read. */
+    static const size_t HUGE_N[] = { SIZE_MAX, SIZE_MAX / 2 + 1, (size_t)1 << 40, 1u << 31 };
+    double one = 1;
+    const fmi2ValueReference vr = VR_EPSILON;
+    for (size_t k = 0; k < sizeof HUGE_N / sizeof HUGE_N[0]; ++k) {
+        const size_t n = HUGE_N[k];
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, NULL, n, NULL));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetInteger(c, NULL, n, NULL));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetBoolean(c, NULL, n, NULL));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetString(c, NULL, n, NULL));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, NULL, n, NULL));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetInteger(c, NULL, n, NULL));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetBoolean(c, NULL, n, NULL));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetString(c, NULL, n, NULL));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, NULL, n, NULL, n, NULL, NULL));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetContinuousStates(c, NULL, n));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetDerivatives(c, NULL, n));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetEventIndicators(c, NULL, n));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetContinuousStates(c, NULL, n));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetNominalsOfContinuousStates(c, NULL, n));
+        /* One real element behind a huge count must not be read past. */
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, NULL, n, &one));
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, &vr, n, NULL));
+        EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, NULL, n, &vr, 1, &one, &one));
+    }
+
+    /* Wrong sizes of the state and indicator arrays, each a real array. */
+    double big[ROD_NX + ROD_NZ + 2] = { 0, 1, 0, 0, 1, 0.5 };
+    static const size_t WRONG[] = { 0, ROD_NX - 1, ROD_NX + 1 };
+    for (size_t k = 0; k < sizeof WRONG / sizeof WRONG[0]; ++k) {
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetContinuousStates(c, big, WRONG[k]));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetDerivatives(c, big, WRONG[k]));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetContinuousStates(c, big, WRONG[k]));
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetNominalsOfContinuousStates(c, big, WRONG[k]));
+    }
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetEventIndicators(c, big, ROD_NZ + 1));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetEventIndicators(c, big, ROD_NZ - 1));
+}
+
+/* Large but real arrays: a million value references. */
+static void test_large_arrays(void)
+{
+    enum { N = 1 << 20 };
+    fmi2ValueReference *vr = malloc(N * sizeof *vr);
+    double *v = malloc(N * sizeof *v);
+    fmi2Integer *iv = malloc(N * sizeof *iv);
+    if (!CHECK(vr && v && iv, "out of memory")) goto done;
+
+    for (size_t k = 0; k < N; ++k) vr[k] = UINT_MAX - (unsigned)(k % 7);
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, vr, N, v));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, vr, N, v));
+
+    for (size_t k = 0; k < N; ++k) vr[k] = (unsigned)(k % N_REALS);
+    EXPECT_IN(S_EVENT, fmi2OK, f->GetReal(c, vr, N, v));
+    bool finite = true;
+    for (size_t k = 0; k < N; ++k) finite &= isfinite(v[k]) != 0;
+    CHECK(finite, "fmi2GetReal of %d values gave a non-finite one", N);
+
+    vr[N - 1] = VR_COUNT; /* the last one is out of range: every element is read */
+    EXPECT_IN(S_EVENT, fmi2Error, f->GetReal(c, vr, N, v));
+
+    for (size_t k = 0; k < N; ++k) {
+        vr[k] = VR_EPSILON;
+        v[k] = 1e-3 * (1 + (double)(k % 5));
+    }
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetReal(c, vr, N, v));
+    v[N - 1] = NAN;
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, vr, N, v));
+
+    for (size_t k = 0; k < N; ++k) vr[k] = VR_MODE;
+    EXPECT_IN(S_CONTINUOUS, fmi2OK, f->GetInteger(c, vr, N, iv));
+    vr[N - 1] = VR_CONTACT;
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->GetInteger(c, vr, N, iv));
+done:
+    free(vr);
+    free(v);
+    free(iv);
+}
+
+/* ------------------------------------------------------------- values */
+
+static fmi2Status set_one(fmi2Component c, fmi2ValueReference vr, double value)
+{
+    return f->SetReal(c, &vr, 1, &value);
+}
+
+static void test_bad_values(void)
+{
+    static const double BAD_EVERYWHERE[] = { NAN, -NAN, INFINITY, -INFINITY, DBL_MAX, -DBL_MAX };
+    for (unsigned vr = 0; vr <= VR_PHI; ++vr)
+        for (size_t k = 0; k < sizeof BAD_EVERYWHERE / sizeof BAD_EVERYWHERE[0]; ++k)
+            EXPECT_IN(S_INSTANTIATED, fmi2Error, set_one(c, vr, BAD_EVERYWHERE[k]));
+    /* epsilon: zero, negative, denormal, below and above its range. */
+    static const double BAD_EPSILON[] = { 0.0, -0.0, -1e-3, 4.9e-324, DBL_MIN, 1e-9, 1.0000001, 1e300 };
+    for (size_t k = 0; k < sizeof BAD_EPSILON / sizeof BAD_EPSILON[0]; ++k)
+        EXPECT_IN(S_INSTANTIATED, fmi2Error, set_one(c, VR_EPSILON, BAD_EPSILON[k]));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, set_one(c, VR_EPSILON, 1e-8));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, set_one(c, VR_EPSILON, 1));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, set_one(c, VR_ALPHA, 0.0));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, set_one(c, VR_MU, -4.9e-324));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, set_one(c, VR_DELTA, -1));
+
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetupExperiment(c, fmi2True, NAN, 0, fmi2False, 0));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetupExperiment(c, fmi2True, -1, 0, fmi2False, 0));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetupExperiment(c, fmi2False, 0, INFINITY, fmi2False, 0));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetupExperiment(c, fmi2False, 0, 1, fmi2True, 0));
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetupExperiment(c, fmi2False, NAN, 0, fmi2False, NAN));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetTime(c, NAN));
+    EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetTime(c, -INFINITY));
+
+    double x[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
+    for (int k = 0; k < ROD_NX; ++k) {
+        const double keep = x[k];
+        x[k] = k % 2 ? NAN : INFINITY;
+        EXPECT_IN(S_CONTINUOUS, fmi2Error, f->SetContinuousStates(c, x, ROD_NX));
+        x[k] = keep;
+    }
+    /* Extreme but allowed values: every output stays finite or the call says why. */
+    for (unsigned vr = VR_X; vr <= VR_PHI; ++vr) {
+        fmi2Component c = instance_in(S_INIT);
+        if (!c) continue;
+        double eps = 1e-8, big = 1e6;
+        set_one(c, VR_EPSILON, eps);
+        CHECK(set_one(c, vr, vr % 2 ? -big : big) == fmi2OK, "setting Real %u to its bound", vr);
+        bool changed;
+        if (f->ExitInitializationMode(c) == fmi2OK && harness_event_iteration(f, c, &changed) == fmi2OK)
+            call_get_real(c);
+        free_instance(c);
+    }
+
+    /* A rejected fmi2SetReal changes nothing. */
+    fmi2Component c = instance_in(S_INIT);
+    if (c) {
+        const fmi2ValueReference vrs[2] = { VR_EPSILON, VR_ALPHA };
+        const double values[2] = { 0.5, -1 };
+        double before = 0, after = 0;
+        CHECK(f->GetReal(c, vrs, 1, &before) == fmi2OK, "reading epsilon");
+        CHECK(f->SetReal(c, vrs, 2, values) == fmi2Error, "alpha = -1 accepted");
+        CHECK(f->GetReal(c, vrs, 1, &after) == fmi2OK, "reading epsilon in the Error state");
+        CHECK(before == after, "a rejected fmi2SetReal changed epsilon from %g to %g", before, after);
+        free_instance(c);
+    }
+}
+
+/* -------------------------------------------------- instantiate, logging */
+
+static void test_instantiate_arguments(void)
+{
+    const fmi2CallbackFunctions *cb = &harness_callbacks;
+    fmi2CallbackFunctions no_alloc = *cb, no_free = *cb, no_logger = *cb;
+    no_alloc.allocateMemory = NULL;
+    no_free.freeMemory = NULL;
+    no_logger.logger = NULL;
+    const char *g = harness_guid;
+    char *long_text = malloc(100001);
+    if (!CHECK(long_text != NULL, "out of memory")) return;
+    for (int k = 0; k < 100000; ++k) long_text[k] = "%s%n%d%%x"[k % 9];
+    long_text[100000] = '\0';
+
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, g, "", NULL, fmi2False, fmi2False) == NULL, "functions NULL");
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, g, "", &no_alloc, fmi2False, fmi2False) == NULL,
+          "allocateMemory NULL");
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, g, "", &no_free, fmi2False, fmi2False) == NULL, "freeMemory NULL");
+    CHECK(f->Instantiate(NULL, fmi2ModelExchange, g, "", cb, fmi2False, fmi2False) == NULL, "instanceName NULL");
+    CHECK(f->Instantiate("", fmi2ModelExchange, g, "", cb, fmi2False, fmi2False) == NULL, "instanceName empty");
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, NULL, "", cb, fmi2False, fmi2False) == NULL, "GUID NULL");
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, "{wrong}", "", cb, fmi2False, fmi2False) == NULL, "GUID wrong");
+    CHECK(f->Instantiate("rod", fmi2ModelExchange, long_text, "", cb, fmi2False, fmi2False) == NULL, "GUID long");
+    CHECK(f->Instantiate("rod", (fmi2Type)7, g, "", cb, fmi2False, fmi2False) == NULL, "fmuType 7");
+    CHECK(f->Instantiate("rod", (fmi2Type)-1, g, "", cb, fmi2False, fmi2False) == NULL, "fmuType -1");
+    CHECK(harness.live == 0, "a failed fmi2Instantiate left %ld blocks allocated", harness.live);
+
+    /* Co-Simulation: this build may or may not offer it; either way nothing leaks. */
+    fmi2Component c = f->Instantiate("rod", fmi2CoSimulation, g, "", cb, fmi2False, fmi2False);
+    if (c) free_instance(c);
+    CHECK(harness.live == 0, "fmi2Instantiate(fmi2CoSimulation) leaked %ld blocks", harness.live);
+
+    /* Allowed oddities: no logger, no resource location, a long name full of '%'. */
+    const struct { const char *name, *resources; const fmi2CallbackFunctions *cb; } OK_CASES[] = {
+        { "rod", NULL, &no_logger }, { "rod", NULL, cb }, { long_text, long_text, cb }, { "%s%n", "%s", cb },
+    };
+    for (size_t k = 0; k < sizeof OK_CASES / sizeof OK_CASES[0]; ++k) {
+        c = f->Instantiate(OK_CASES[k].name, fmi2ModelExchange, g, OK_CASES[k].resources, OK_CASES[k].cb, fmi2True,
+                           fmi2True);
+        if (!CHECK(c != NULL, "fmi2Instantiate case %zu failed", k)) continue;
+        CHECK(set_one(c, VR_EPSILON, NAN) == fmi2Error, "epsilon = NaN accepted");
+        check_reset_recovers(c, "odd instantiate arguments");
+        free_instance(c);
+    }
+    free(long_text);
+}
+
+/* allocateMemory returning NULL at each allocation of fmi2Instantiate in turn. */
+static void test_allocation_failure(void)
+{
+    for (long k = 1; k <= 16; ++k) {
+        harness.fail_allocation_at = harness.allocations + k;
+        fmi2Component c = harness_instantiate(f, "rod");
+        const bool failed_inside = harness.allocations >= harness.fail_allocation_at;
+        harness.fail_allocation_at = 0;
+        if (failed_inside) {
+            CHECK(c == NULL, "fmi2Instantiate succeeded although allocation %ld returned NULL", k);
+            CHECK(harness.live == 0, "fmi2Instantiate that failed at allocation %ld leaked %ld blocks", k,
+                  harness.live);
+        } else {
+            CHECK(c != NULL, "fmi2Instantiate failed without an allocation failure");
+        }
+        if (c) {
+            check_reset_recovers(c, "after allocation failures");
+            free_instance(c);
+        }
+        if (!failed_inside) break;
+    }
+}
+
+static void test_logging(void)
+{
+    char long_category[5000];
+    memset(long_category, '%', sizeof long_category - 1);
+    long_category[sizeof long_category - 1] = '\0';
+    const fmi2String KNOWN[] = { "logEvents", "logStatusWarning", "logStatusError", "logAll" };
+    const fmi2String UNKNOWN[] = { "logEvents", "logNothing" };
+    const fmi2String LONG[] = { long_category };
+    EXPECT_IN(S_INSTANTIATED, fmi2OK, f->SetDebugLogging(c, fmi2True, 4, KNOWN));
+    EXPECT_IN(S_ERROR, fmi2OK, f->SetDebugLogging(c, fmi2False, 4, KNOWN));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetDebugLogging(c, fmi2True, 2, UNKNOWN));
+    EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetDebugLogging(c, fmi2True, 1, LONG));
+
+    /* With every category on, a simulation logs its events, all well formed. */
+    fmi2Component c = instance_in(S_INSTANTIATED);
+    if (c) {
+        const long before = harness.messages;
+        CHECK(f->SetDebugLogging(c, fmi2True, 0, NULL) == fmi2OK, "logging on");
+        EulerSim s = { .c = c };
+        CHECK(harness_simulate(f, &s, 0.1, 5e-3, 60) == fmi2OK, "simulation with logging: %s", harness.last_message);
+        CHECK(harness.messages > before, "no message logged by a simulation with events and logging on");
+        free_instance(c);
+    }
+}
+
+/* ----------------------------------------------------- FMU state bytes */
+
+/* A copy of n bytes in a block of exactly n, so that any read past the end is caught. */
+static fmi2Byte *exact_copy(const fmi2Byte *bytes, size_t n)
+{
+    fmi2Byte *p = malloc(n ? n : 1);
+    if (p && n) memcpy(p, bytes, n);
+    return p;
+}
+
+/* Serialized states cut short or with a byte changed are refused, never
+ * read past their end; an intact one round-trips. Skipped where the FMU does
+ * not serialize its state. */
+static void test_serialized_state_bytes(int state)
+{
+    fmi2Component c = instance_in(state);
+    if (!c) return;
+    fmi2FMUstate s = NULL, t = NULL;
+    size_t size = 0;
+    fmi2Byte *bytes = NULL, *again = NULL;
+    if (f->GetFMUstate(c, &s) != fmi2OK || f->SerializedFMUstateSize(c, s, &size) != fmi2OK) goto done;
+    bytes = malloc(size ? size : 1);
+    again = malloc(size ? size : 1);
+    if (!CHECK(bytes && again, "out of memory")) goto done;
+    if (!CHECK(f->SerializeFMUstate(c, s, bytes, size) == fmi2OK, "fmi2SerializeFMUstate: %s", harness.last_message))
+        goto done;
+    CHECK(f->DeSerializeFMUstate(c, bytes, size, &t) == fmi2OK, "intact state refused: %s", harness.last_message);
+    CHECK(f->SerializeFMUstate(c, t, again, size) == fmi2OK && memcmp(bytes, again, size) == 0,
+          "a deserialized state serializes differently");
+    CHECK(f->SetFMUstate(c, t) == fmi2OK, "fmi2SetFMUstate of a deserialized state: %s", harness.last_message);
+    f->FreeFMUstate(c, &t);
+
+    fmi2Byte *small = exact_copy(bytes, size - 1);
+    CHECK(f->SerializeFMUstate(c, s, small, size - 1) == fmi2Error, "a state serialized into %zu of %zu bytes",
+          size - 1, size);
+    CHECK(f->Reset(c) == fmi2OK, "fmi2Reset");
+    free(small);
+    for (size_t n = 0; n < size; ++n) {
+        fmi2Byte *prefix = exact_copy(bytes, n);
+        fmi2Status st = f->DeSerializeFMUstate(c, prefix, n, &t);
+        CHECK(st != fmi2OK, "a state cut to %zu of %zu bytes was accepted", n, size);
+        if (st == fmi2OK) f->FreeFMUstate(c, &t);
+        if (st == fmi2Error) CHECK(f->Reset(c) == fmi2OK, "fmi2Reset");
+        free(prefix);
+    }
+    /* Every byte set to values on the edges of lengths and counts. */
+    static const unsigned char EDGES[] = { 0x00, 0x01, 0x3f, 0x40, 0x41, 0x7f, 0x80, 0xff };
+    for (size_t n = 0; n < size; ++n) {
+        for (size_t k = 0; k < sizeof EDGES; ++k) {
+            if ((unsigned char)bytes[n] == EDGES[k]) continue;
+            fmi2Byte *changed = exact_copy(bytes, size);
+            changed[n] = (fmi2Byte)EDGES[k];
+            fmi2Status st = f->DeSerializeFMUstate(c, changed, size, &t);
+            CHECK(st != fmi2OK, "a state with byte %zu of %zu set to %#x was accepted", n, size, EDGES[k]);
+            if (st == fmi2OK) f->FreeFMUstate(c, &t);
+            if (st == fmi2Error) CHECK(f->Reset(c) == fmi2OK, "fmi2Reset");
+            free(changed);
+        }
+    }
+done:
+    if (s) f->FreeFMUstate(c, &s);
+    free(bytes);
+    free(again);
+    free_instance(c);
+}
+
+/* --------------------------------------------------- instances together */
+
+static bool same_state(const EulerSim *a, const EulerSim *b)
+{
+    return memcmp(a->x, b->x, sizeof a->x) == 0 && a->events == b->events;
+}
+
+/* Instances stepped in turn are independent: equal set-ups give equal runs. */
+static void test_interleaved_instances(void)
+{
+    enum { N = 32, STEPS = 60 };
+    EulerSim s[N];
+    char name[32];
+    for (int k = 0; k < N; ++k) {
+        snprintf(name, sizeof name, "rod%d", k);
+        s[k] = (EulerSim){ .c = harness_instantiate(f, name) };
+        if (!CHECK(s[k].c != NULL, "instance %d", k)) return;
+        CHECK(euler_start(f, &s[k], k % 2 ? 0.1 : 0.05) == fmi2OK, "start %d", k);
+    }
+    for (int step = 0; step < STEPS; ++step)
+        for (int k = 0; k < N; ++k) {
+            if (!s[k].c) continue;
+            CHECK(euler_step(f, &s[k], 5e-3) == fmi2OK, "instance %d step %d: %s", k, step, harness.last_message);
+            /* Some instances leave early, in various states. */
+            if (k % 5 == 4 && step == STEPS / 2 + k) {
+                f->FreeInstance(s[k].c);
+                s[k].c = NULL;
+            }
+        }
+    for (int k = 2; k < N; ++k)
+        if (s[k].c && s[k % 2].c)
+            CHECK(same_state(&s[k], &s[k % 2]), "instance %d ended unlike instance %d", k, k % 2);
+    CHECK(s[0].events > 0 && s[1].events > 0, "the runs crossed no event (%d, %d)", s[0].events, s[1].events);
+    for (int k = N - 1; k >= 0; k -= 2)
+        if (s[k].c) f->FreeInstance(s[k].c);
+    for (int k = 0; k < N; k += 2)
+        if (s[k].c) f->FreeInstance(s[k].c);
+    CHECK(harness.live == 0, "%ld blocks left after freeing every instance", harness.live);
+}
+
+/* ------------------------------------------------------- Co-Simulation */
+
+static fmi2Component cs_instance(void)
+{
+    return f->Instantiate("cs rod", fmi2CoSimulation, harness_guid, "", &harness_callbacks, fmi2False, fmi2False);
+}
+
+/* Set-up and initialization of a Co-Simulation instance; time 0. */
+static fmi2Status cs_start(fmi2Component c, double epsilon)
+{
+    const fmi2ValueReference vr = VR_EPSILON;
+    fmi2Status st = f->SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
+    if (st == fmi2OK) st = f->SetReal(c, &vr, 1, &epsilon);
+    if (st == fmi2OK) st = f->EnterInitializationMode(c);
+    if (st == fmi2OK) st = f->ExitInitializationMode(c);
+    return st;
+}
+
+/* `steps` communication steps of h from *t (which follows). */
+static fmi2Status cs_run(fmi2Component c, double *t, double h, int steps)
+{
+    for (int k = 0; k < steps; ++k) {
+        const fmi2Status st = f->DoStep(c, *t, h, fmi2True);
+        if (st != fmi2OK) return st;
+        *t += h;
+    }
+    return fmi2OK;
+}
+
+/* Whether this build steps: without SUNDIALS, fmi2DoStep always fails. */
+static bool cosimulation_available(void)
+{
+    fmi2Component c = cs_instance();
+    if (!c) return false;
+    double t = 0;
+    fmi2Status st = cs_start(c, 0.05);
+    if (st == fmi2OK) st = cs_run(c, &t, 1e-3, 1);
+    free_instance(c);
+    return st == fmi2OK;
+}
+
+enum { CS_INSTANTIATED, CS_INIT, CS_STEP_COMPLETE, CS_TERMINATED, CS_ERROR, N_CS_STATES };
+static const char *const CS_STATE_NAME[N_CS_STATES] = { "Instantiated", "InitializationMode", "StepComplete",
+                                                        "Terminated", "Error" };
+
+static fmi2Component cs_instance_in(int state)
+{
+    fmi2Component c = cs_instance();
+    if (!CHECK(c != NULL, "fmi2Instantiate(fmi2CoSimulation) failed: %s", harness.last_message)) return NULL;
+    const fmi2ValueReference vr = VR_EPSILON;
+    const double eps = 0.05;
+    double t = 0;
+    fmi2Status st = fmi2OK;
+    if (state >= CS_INIT) {
+        st = f->SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
+        if (st == fmi2OK) st = f->SetReal(c, &vr, 1, &eps);
+        if (st == fmi2OK) st = f->EnterInitializationMode(c);
+    }
+    if (state >= CS_STEP_COMPLETE && st == fmi2OK) st = f->ExitInitializationMode(c);
+    if (state >= CS_STEP_COMPLETE && st == fmi2OK) st = cs_run(c, &t, 0.02, 3);
+    if (state == CS_TERMINATED && st == fmi2OK) st = f->Terminate(c);
+    if (state == CS_ERROR && st == fmi2OK) st = f->DoStep(c, t, NAN, fmi2True) == fmi2Error ? fmi2OK : fmi2Fatal;
+    if (!CHECK(st == fmi2OK, "reaching Co-Simulation state %s: %s (%s)", CS_STATE_NAME[state], status_name(st),
+               harness.last_message)) {
+        f->FreeInstance(c);
+        return NULL;
+    }
+    return c;
+}
+
+/* Every call in every Co-Simulation state: a valid status, an error that is
+ * logged and sticks, and fmi2Reset back to an instance that steps. */
+static void test_cosimulation_every_function_in_every_state(void)
+{
+    for (int state = 0; state < N_CS_STATES; ++state) {
+        fmi2Component c = cs_instance_in(state);
+        if (c) free_instance(c); /* fmi2FreeInstance straight from each state, the integrator too */
+        for (size_t k = 0; k < N_CALLS; ++k) {
+            c = cs_instance_in(state);
+            if (!c) continue;
+            char what[160];
+            snprintf(what, sizeof what, "%s in Co-Simulation %s", CALLS[k].name, CS_STATE_NAME[state]);
+            const long errors_before = harness.error_messages;
+            const fmi2Status st = CALLS[k].call(c);
+            CHECK(st >= fmi2OK && st <= fmi2Fatal, "%s returned %d", what, (int)st);
+            if (st == fmi2Error) {
+                CHECK(harness.error_messages > errors_before, "%s returned fmi2Error without logging an error", what);
+                CHECK(f->DoStep(c, 0, 1e-3, fmi2True) == fmi2Error, "%s: fmi2DoStep accepted in the Error state", what);
+                double v;
+                const fmi2ValueReference vr = VR_Y;
+                CHECK(f->GetReal(c, &vr, 1, &v) == fmi2OK, "%s: fmi2GetReal refused in the Error state", what);
+            }
+            double t = 0;
+            fmi2Status again = f->Reset(c);
+            if (again == fmi2OK) again = cs_start(c, 0.05);
+            if (again == fmi2OK) again = cs_run(c, &t, 0.02, 5);
+            CHECK(again == fmi2OK, "%s: stepping after fmi2Reset: %s (%s)", what, status_name(again),
+                  harness.last_message);
+            free_instance(c);
+        }
+    }
+}
+
+static void test_cosimulation_bad_steps(void)
+{
+    static const double BAD_H[] = { 0.0, -0.0, -1e-3, NAN, INFINITY, -INFINITY, -DBL_MAX };
+    for (size_t k = 0; k < sizeof BAD_H / sizeof BAD_H[0]; ++k) {
+        fmi2Component c = cs_instance_in(CS_STEP_COMPLETE);
+        if (!c) continue;
+        CHECK(f->DoStep(c, 0.06, BAD_H[k], fmi2True) == fmi2Error, "fmi2DoStep with step size %g accepted", BAD_H[k]);
+        free_instance(c);
+    }
+    static const double BAD_T[] = { 0.0, 0.07, NAN, INFINITY, -1.0 };
+    for (size_t k = 0; k < sizeof BAD_T / sizeof BAD_T[0]; ++k) {
+        fmi2Component c = cs_instance_in(CS_STEP_COMPLETE); /* at t = 0.06 */
+        if (!c) continue;
+        CHECK(f->DoStep(c, BAD_T[k], 1e-3, fmi2True) == fmi2Error, "fmi2DoStep from t = %g accepted at 0.06",
+              BAD_T[k]);
+        free_instance(c);
+    }
+    fmi2Component c = cs_instance_in(CS_INIT);
+    if (c) {
+        CHECK(f->DoStep(c, 0, 1e-3, fmi2True) == fmi2Error, "fmi2DoStep accepted during initialization");
+        free_instance(c);
+    }
+}
+
+/* An FMU state taken mid-run and set again gives the same steps. */
+static void test_cosimulation_state_restores_the_run(void)
+{
+    fmi2Component c = cs_instance_in(CS_STEP_COMPLETE);
+    if (!c) return;
+    fmi2ValueReference vr[ROD_NX];
+    double first[ROD_NX], second[ROD_NX], t = 0.06, t_saved;
+    for (int i = 0; i < ROD_NX; ++i) vr[i] = VR_X + (unsigned)i;
+    fmi2FMUstate s = NULL;
+    if (!CHECK(f->GetFMUstate(c, &s) == fmi2OK, "fmi2GetFMUstate: %s", harness.last_message)) goto done;
+    t_saved = t;
+    CHECK(cs_run(c, &t, 0.02, 10) == fmi2OK && f->GetReal(c, vr, ROD_NX, first) == fmi2OK, "first run: %s",
+          harness.last_message);
+    CHECK(f->SetFMUstate(c, s) == fmi2OK, "fmi2SetFMUstate: %s", harness.last_message);
+    t = t_saved;
+    CHECK(cs_run(c, &t, 0.02, 10) == fmi2OK && f->GetReal(c, vr, ROD_NX, second) == fmi2OK, "second run: %s",
+          harness.last_message);
+    CHECK(memcmp(first, second, sizeof first) == 0, "the run after fmi2SetFMUstate differs (y %.17g vs %.17g)",
+          first[ROD_Y], second[ROD_Y]);
+done:
+    if (s) f->FreeFMUstate(c, &s);
+    free_instance(c);
+}
+
+/* --------------------------------------------------------- memory soak */
+
+static long resident_kb(void)
+{
+    long size = 0, resident = 0;
+    FILE *fp = fopen("/proc/self/statm", "r");
+    if (!fp) return -1;
+    if (fscanf(fp, "%ld %ld", &size, &resident) != 2) resident = -1;
+    fclose(fp);
+    return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+/* Instantiate, simulate (Model Exchange with events, or Co-Simulation every
+ * fourth cycle), sometimes reset and simulate again or stop half-way, free:
+ * `cycles` times, with the resident set measured after a warm-up and at the end. */
+static void test_cycles(long cycles, long max_growth_kb, bool cosimulation)
+{
+    const long warmup = cycles / 10 < 1000 ? cycles / 10 : 1000;
+    long rss_before = -1, events = 0;
+    for (long k = 0; k < cycles; ++k) {
+        if (k == warmup) rss_before = resident_kb();
+        fmi2Status st;
+        fmi2Component c;
+        if (cosimulation && k % 4 == 1) {
+            /* Co-Simulation: CVODE's memory, made on the first step, freed with the instance. */
+            c = cs_instance();
+            if (!CHECK(c != NULL, "cycle %ld: fmi2Instantiate(fmi2CoSimulation) failed", k)) return;
+            double t = 0;
+            st = cs_start(c, 0.05);
+            if (st == fmi2OK) st = cs_run(c, &t, 0.02, k % 8 == 5 ? 3 : 12);
+            if (k % 3 == 0 && st == fmi2OK) st = f->Reset(c);
+        } else {
+            c = harness_instantiate(f, "cycling rod");
+            if (!CHECK(c != NULL, "cycle %ld: fmi2Instantiate failed", k)) return;
+            EulerSim s = { .c = c };
+            /* 24 steps cross about three events (stick, slip, lift-off); some runs stop early. */
+            st = harness_simulate(f, &s, 0.05, 1e-2, k % 7 == 3 ? 6 : 24);
+            events += s.events;
+            if (k % 10 == 5 && st == fmi2OK) {
+                st = f->Reset(c);
+                if (st == fmi2OK) st = harness_simulate(f, &s, 0.05, 5e-3, 6);
+            }
+        }
+        if (k % 13 == 7) (void)set_one(c, VR_EPSILON, NAN); /* leave through the Error state */
+        f->FreeInstance(c);
+        if (!CHECK(st == fmi2OK, "cycle %ld: %s (%s)", k, status_name(st), harness.last_message)) return;
+        if (!CHECK(harness.live == 0, "cycle %ld left %ld blocks allocated", k, harness.live)) return;
+    }
+    const long rss_after = resident_kb();
+    printf("cycles: %ld instantiate/simulate/free cycles, %ld events, %ld allocations; resident set %ld kB "
+           "after %ld warm-up cycles, %ld kB at the end\n",
+           cycles, events, harness.allocations, rss_before, warmup, rss_after);
+    CHECK(cycles == 0 || events > cycles / 2, "the cycles crossed too few events (%ld)", events);
+    if (max_growth_kb >= 0 && cycles > 0)
+        CHECK(rss_after - rss_before <= max_growth_kb, "resident set grew by %ld kB over %ld cycles (bound %ld kB)",
+              rss_after - rss_before, cycles - warmup, max_growth_kb);
+}
+
+/* ----------------------------------------------------------------- main */
+
+static void test_platform_and_version(void)
+{
+    CHECK(strcmp(f->GetTypesPlatform(), "default") == 0, "types platform '%s'", f->GetTypesPlatform());
+    CHECK(strcmp(f->GetVersion(), "2.0") == 0, "version '%s'", f->GetVersion());
+}
+
+int main(int argc, char **argv)
+{
+    const char *lib = FMU_LIBRARY;
+    long cycles = 1000, max_growth_kb = -1;
+    bool api_tests = true;
+    for (int k = 1; k < argc; ++k) {
+        if (!strcmp(argv[k], "--lib") && k + 1 < argc) lib = argv[++k];
+        else if (!strcmp(argv[k], "--cycles") && k + 1 < argc) cycles = atol(argv[++k]);
+        else if (!strcmp(argv[k], "--max-rss-growth-kb") && k + 1 < argc) max_growth_kb = atol(argv[++k]);
+        else if (!strcmp(argv[k], "--no-api")) api_tests = false;
+        else {
+            fprintf(stderr, "usage: %s [--lib PATH] [--cycles N] [--max-rss-growth-kb K] [--no-api]\n", argv[0]);
+            return 2;
+        }
+    }
+    char err[1024];
+    if (!fmi_api_load(&api, lib, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        return 2;
+    }
+    harness_reset();
+    if (api_tests) {
+        test_platform_and_version();
+        test_every_function_in_every_state();
+        test_null_instance();
+        test_null_arguments();
+        test_value_references();
+        test_nvr_zero_and_huge();
+        test_large_arrays();
+        test_bad_values();
+        for (int state = S_INSTANTIATED; state <= S_TERMINATED; ++state) test_serialized_state_bytes(state);
+        test_instantiate_arguments();
+        test_allocation_failure();
+        test_logging();
+        test_interleaved_instances();
+    }
+    const bool cosimulation = cosimulation_available();
+    if (api_tests && cosimulation) {
+        test_cosimulation_every_function_in_every_state();
+        test_cosimulation_bad_steps();
+        test_cosimulation_state_restores_the_run();
+    }
+    printf("Co-Simulation %s\n", cosimulation ? "tested" : "not in this build: Model Exchange only");
+    test_cycles(cycles, max_growth_kb, cosimulation);
+    CHECK(harness.bad_messages == 0, "%ld malformed log messages, the last: %s", harness.bad_messages,
+          harness.last_bad);
+    CHECK(harness.live == 0, "%ld blocks allocated through allocateMemory never freed", harness.live);
+    fmi_api_unload(&api);
+    printf("fmi_driver: %ld checks, %ld failed (%ld allocations, %ld log messages)\n", checks, failures,
+           harness.allocations, harness.messages);
+    return failures ? 1 : 0;
+}
