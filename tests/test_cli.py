@@ -132,7 +132,8 @@ def wrong_physics_fmu(tmp_path_factory):
     src = tmp_path_factory.mktemp("wrong")
     for name in ("CMakeLists.txt", "modelDescription.xml"):
         shutil.copy(ROOT / name, src / name)
-    shutil.copytree(ROOT / "fmu_src", src / "fmu_src")
+    for folder in ("fmu_src", "cmake"):
+        shutil.copytree(ROOT / folder, src / folder)
     rod = src / "fmu_src" / "rod.c"
     text = rod.read_text()
     right = "r.S_w = (1 + al) / k;"
