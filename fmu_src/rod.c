@@ -78,23 +78,30 @@ double rod_energy(const RodParams *p, const double x[ROD_NX])
     return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / p->alpha + (y + s) + spring;
 }
 
+static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
+
+/* How F_N enters the mode's right-hand side: v' = (a) + g.v F_N, w' = b + g.w F_N,
+ * phi' = g.phi F_N, with g taken from k (coefficients) or its theta-derivative. */
+typedef struct { double v, w, phi; } ForceGains;
+
+static ForceGains force_gains(const RodCoeffs *k, RodMode m)
+{
+    if (sticking(m)) return (ForceGains){ 0, k->S_w, k->S_phi };        /* Proposition lem:Filippov */
+    if (m.slip >= 0) return (ForceGains){ k->q_plus, k->p_plus, k->c_plus }; /* eq PainleveEqs */
+    return (ForceGains){ k->q_minus, k->p_minus, k->c_minus };
+}
+
 void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX])
 {
     const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    const ForceGains g = force_gains(&k, m);
     const double F = rod_normal_force(p, m, x);
     dx[ROD_X] = x[ROD_V];
     dx[ROD_Y] = x[ROD_W];
     dx[ROD_THETA] = x[ROD_PHI];
-    if (m.slip == 0 && m.contact) {              /* Proposition lem:Filippov */
-        dx[ROD_V] = 0;
-        dx[ROD_W] = k.b + k.S_w * F;
-        dx[ROD_PHI] = k.S_phi * F;
-    } else {                                     /* eq PainleveEqs */
-        const bool fwd = m.slip >= 0;
-        dx[ROD_V] = k.a + (fwd ? k.q_plus : k.q_minus) * F;
-        dx[ROD_W] = k.b + (fwd ? k.p_plus : k.p_minus) * F;
-        dx[ROD_PHI] = (fwd ? k.c_plus : k.c_minus) * F;
-    }
+    dx[ROD_V] = sticking(m) ? 0 : k.a + g.v * F;   /* v' = 0 exactly on the sticking set */
+    dx[ROD_W] = k.b + g.w * F;
+    dx[ROD_PHI] = g.phi * F;
 }
 
 /* d/dtheta of the coefficients in RodCoeffs (phi enters a and b only). */
@@ -128,38 +135,27 @@ void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double 
     J[ROD_X][ROD_V] = 1;
     J[ROD_Y][ROD_W] = 1;
     J[ROD_THETA][ROD_PHI] = 1;
-    double kv, kw, kphi, dkv, dkw, dkphi; /* F's coefficients in v', w', phi' and their theta-derivatives */
-    if (m.contact && m.slip == 0) {
-        kv = dkv = 0;
-        kw = k.S_w, dkw = dk.S_w;
-        kphi = k.S_phi, dkphi = dk.S_phi;
-    } else {
-        const bool fwd = m.slip >= 0;
-        kv = fwd ? k.q_plus : k.q_minus, dkv = fwd ? dk.q_plus : dk.q_minus;
-        kw = fwd ? k.p_plus : k.p_minus, dkw = fwd ? dk.p_plus : dk.p_minus;
-        kphi = fwd ? k.c_plus : k.c_minus, dkphi = fwd ? dk.c_plus : dk.c_minus;
-    }
-    const bool moving_v = !(m.contact && m.slip == 0);
-    if (moving_v) {
-        J[ROD_V][ROD_THETA] = dk.a + dkv * F;
+    const ForceGains g = force_gains(&k, m), dg = force_gains(&dk, m);
+    if (!sticking(m)) {
+        J[ROD_V][ROD_THETA] = dk.a + dg.v * F;
         J[ROD_V][ROD_PHI] = -2 * phi * cos(th);
-        J[ROD_V][ROD_Y] = kv * F_y;
-        J[ROD_V][ROD_W] = kv * F_w;
+        J[ROD_V][ROD_Y] = g.v * F_y;
+        J[ROD_V][ROD_W] = g.v * F_w;
     }
-    J[ROD_W][ROD_THETA] = dk.b + dkw * F;
+    J[ROD_W][ROD_THETA] = dk.b + dg.w * F;
     J[ROD_W][ROD_PHI] = 2 * phi * sin(th);
-    J[ROD_W][ROD_Y] = kw * F_y;
-    J[ROD_W][ROD_W] = kw * F_w;
-    J[ROD_PHI][ROD_THETA] = dkphi * F;
-    J[ROD_PHI][ROD_Y] = kphi * F_y;
-    J[ROD_PHI][ROD_W] = kphi * F_w;
+    J[ROD_W][ROD_Y] = g.w * F_y;
+    J[ROD_W][ROD_W] = g.w * F_w;
+    J[ROD_PHI][ROD_THETA] = dg.phi * F;
+    J[ROD_PHI][ROD_Y] = g.phi * F_y;
+    J[ROD_PHI][ROD_W] = g.phi * F_w;
 }
 
 void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ])
 {
     z[ROD_Z_Y] = x[ROD_Y];
     z[ROD_Z_FORCE] = rod_force_bracket(p, x);
-    if (m.contact && m.slip == 0) {
+    if (sticking(m)) {
         const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
         const double F = rod_normal_force(p, m, x);
         z[ROD_Z_SLIP] = k.a + k.q_plus * F;
@@ -183,7 +179,7 @@ void rod_nominals(const RodParams *p, double nominal[ROD_NX])
 
 const char *rod_indicator_name(const RodMode m, int i)
 {
-    const bool stick = m.contact && m.slip == 0;
+    const bool stick = sticking(m);
     switch (i) {
     case ROD_Z_Y: return "y";
     case ROD_Z_FORCE: return "g = -y/eps - delta w (F_N = 0)";
@@ -236,7 +232,7 @@ static int wanted_side(const RodParams *p, RodMode m, int i, const double x[ROD_
     switch (i) {
     case ROD_Z_Y: return m.contact ? -1 : +1;
     case ROD_Z_FORCE: return m.contact ? +1 : -1;
-    case ROD_Z_SLIP: return m.contact && m.slip == 0 ? -1 : m.slip;
+    case ROD_Z_SLIP: return sticking(m) ? -1 : m.slip;
     case ROD_Z_AUX:
         if (m.contact) return m.slip == 0 ? +1 : 0;
         return rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]).b >= 0 ? +1 : -1;
