@@ -2,7 +2,6 @@
 and events as Model Exchange, for any master and any communication step."""
 import re
 import subprocess
-from ctypes import POINTER, c_double
 
 import fmpy
 import numpy as np

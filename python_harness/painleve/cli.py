@@ -97,7 +97,7 @@ def fmu_file(path):
     given = path or os.environ.get("PAINLEVE_FMU") or DEFAULT_FMU
     p = pathlib.Path(given)
     if not p.exists():
-        how = "" if path else f" (the default; set PAINLEVE_FMU or pass --fmu)"
+        how = "" if path else " (the default; set PAINLEVE_FMU or pass --fmu)"
         raise UsageError(f"no FMU at {p}{how}: build it with `bash run.sh main`, which writes {DEFAULT_FMU}, "
                          f"or give the path of a PainleveRod.fmu")
     if p.is_dir() or not zipfile.is_zipfile(p):
@@ -273,7 +273,7 @@ def iwc_report(case, o):
     """(heading lines, table rows) for one simulated case beside its predictions."""
     from . import analytic as an
     quadrant = {1: "inconsistent, b < 0", 2: "indeterminate, b > 0"}[case.theorem]
-    lam = float(an.lambda_pm(case.theta0, case.delta, alpha=case.alpha, mu=case.mu)[0])
+    lam = case.lambda_plus
     heading = [f"Theorem {case.theorem} ({quadrant}, p_+ = "
                f"{an.p_plus(case.theta0, alpha=case.alpha, mu=case.mu):.4g}): alpha={case.alpha:g} mu={case.mu:g} "
                f"delta={case.delta:g} eps={case.epsilon:g}; theta0={case.theta0:g} phi0={case.phi0:g} "

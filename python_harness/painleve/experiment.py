@@ -77,6 +77,11 @@ class Case:
         return float(an.phi_after_iwc(self.theta0, self.phi0, self.v0, self.delta, **self._params()))
 
     @property
+    def lambda_plus(self):
+        """The unstable eigenvalue of slipping compression (eq lambdapm)."""
+        return float(an.lambda_pm(self.theta0, self.delta, **self._params())[0])
+
+    @property
     def time_scale(self):
         """eps ln(1/eps) / lambda_+: the IWC's duration up to O(eps) (eq TT)."""
         return float(an.iwc_time_scale(self.epsilon, self.theta0, self.delta, **self._params()))
@@ -160,7 +165,7 @@ class Experiment(LoadedFMU):
     def _solver_settings(self, case):
         # In fast time tau = t/eps the IWC takes ln(1/eps)/lambda_+ to compress and
         # O(1 + delta) to stick and lift off; the run stops itself at the return.
-        fast = 10 * math.log(1 / case.epsilon) / case_lambda_plus(case) + 50 * (1 + case.delta)
+        fast = 10 * math.log(1 / case.epsilon) / case.lambda_plus + 50 * (1 + case.delta)
         horizon = case.epsilon * fast
         if self.interface == "CS":   # restarts at each communication point want eps/1000 (measured)
             rtol = self.relative_tolerance or min(1e-6, case.epsilon / 1000)
@@ -181,10 +186,6 @@ class Experiment(LoadedFMU):
         """One case, reduced to its Outcome."""
         r = self.simulate(case)
         return outcome_of(case, r) if self.interface == "ME" else outcome_of(case, r, exact_events=False)
-
-
-def case_lambda_plus(case):
-    return float(an.lambda_pm(case.theta0, case.delta, alpha=case.alpha, mu=case.mu)[0])
 
 
 def _first(mask, start=0):

@@ -4,7 +4,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import analytic as an
 
 
 def power_rate(epsilons, errors):
@@ -38,8 +37,7 @@ class Convergence:
 
     @property
     def predicted_duration_slope(self):
-        c = self.outcomes[0].case
-        return 1 / float(an.lambda_pm(c.theta0, c.delta, alpha=c.alpha, mu=c.mu)[0])
+        return 1 / self.outcomes[0].case.lambda_plus
 
     def table(self):
         rows = [f"{'eps':>8} {'w/v0 - e':>11} {'phi err':>11} {'v':>11} {'t_return':>10} {'events':>6}"]
