@@ -26,6 +26,7 @@ What it knows of fmpy 0.3.32 and chooses for the user:
 """
 import math
 from dataclasses import asdict, dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -37,7 +38,8 @@ OUTPUTS = ["v", "y", "w", "theta", "phi", "mode", "contact"]
 
 @dataclass(frozen=True)
 class Case:
-    """An IWC experiment: the rod's parameters and its state on the floor at t = 0."""
+    """An IWC experiment: the rod's parameters and its state on the floor at t = 0.
+    The paper's predictions are computed once per case (a sweep asks for each several times)."""
     theta0: float = 1.0
     phi0: float = 0.5
     v0: float = 1.0
@@ -47,19 +49,29 @@ class Case:
     alpha: float = 3.0
     mu: float = 3.0
 
-    @property
+    @cached_property
     def theorem(self):
         """1 (inconsistent quadrant, b < 0) or 2 (indeterminate, b > 0)."""
         return 1 if an.b(self.theta0, self.phi0) < 0 else 2
 
     def check(self):
         """Raises HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
+        err = self._hypothesis_error
+        if err is not None:     # a fresh exception each time, not one traceback growing
+            raise an.HypothesisError(str(err), getattr(err, "hypotheses", ()))
+
+    @cached_property
+    def _hypothesis_error(self):
         if not (self.epsilon > 0 and math.isfinite(self.epsilon)):
-            raise an.HypothesisError(f"epsilon must be > 0; got {self.epsilon}")
+            return an.HypothesisError(f"epsilon must be > 0; got {self.epsilon}")
         check = an.check_theorem1 if self.theorem == 1 else an.check_theorem2
-        check(self.theta0, self.phi0, self.v0, alpha=self.alpha, mu=self.mu, delta=self.delta)
+        try:
+            check(self.theta0, self.phi0, self.v0, alpha=self.alpha, mu=self.mu, delta=self.delta)
+        except an.HypothesisError as err:
+            return err
         if self.theorem == 2 and not self.w10 < 0:
-            raise an.HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {self.w10}")
+            return an.HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {self.w10}")
+        return None
 
     def start_values(self):
         return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon,
@@ -68,25 +80,25 @@ class Case:
     def _params(self):
         return dict(alpha=self.alpha, mu=self.mu)
 
-    @property
+    @cached_property
     def e(self):
         return float(an.e(self.delta, self.theta0, **self._params()))
 
-    @property
+    @cached_property
     def predicted_phi(self):
         return float(an.phi_after_iwc(self.theta0, self.phi0, self.v0, self.delta, **self._params()))
 
-    @property
+    @cached_property
     def lambda_plus(self):
         """The unstable eigenvalue of slipping compression (eq lambdapm)."""
         return float(an.lambda_pm(self.theta0, self.delta, **self._params())[0])
 
-    @property
+    @cached_property
     def time_scale(self):
         """eps ln(1/eps) / lambda_+: the IWC's duration up to O(eps) (eq TT)."""
         return float(an.iwc_time_scale(self.epsilon, self.theta0, self.delta, **self._params()))
 
-    @property
+    @cached_property
     def w1_star(self):
         """Theorem 2's separatrix (NaN for a Theorem 1 case)."""
         if self.theorem == 1:
