@@ -25,7 +25,8 @@ void cs_free(Instance *in)
 #ifdef HAVE_CVODE
 /* The default tolerance keeps the solver's error well below the model's own
  * O(eps ln 1/eps): measured, eps/1000 does with a restart at every
- * communication point (Model Exchange under fmpy needs eps/100). */
+ * communication point (Model Exchange under fmpy needs eps/100); it is kept
+ * for masters that restore FMU states often (each restore restarts). */
 static double tolerance_of(const Instance *in)
 {
     const double eps = in->model.params.epsilon;
@@ -42,14 +43,17 @@ static fmi2Status restart(Instance *in, const char *call)
 
 /* Integrates to t_end; events on the way are located by CVODE and handled
  * by the same event iteration as Model Exchange, unseen by the master.
- * CVODE restarts at every step and event: the instance carries no solver
- * history, so its FMU state is just the model's. */
+ * CVODE continues from one step to the next (its history is the trajectory's:
+ * a communication point costs no restart) and restarts after events and
+ * wherever the trajectory may have been replaced: initialization, reset,
+ * FMU state get and set. So the FMU state is still just the model's. */
 static fmi2Status integrate(Instance *in, double t_end)
 {
     static const char call[] = "fmi2DoStep";
     if (!in->cosim) in->cosim = cosim_new();
     REQUIRE(call, in->cosim, "out of memory for the integrator");
-    if (restart(in, call) != fmi2OK) return fmi2Error;
+    if (!in->solver_live && restart(in, call) != fmi2OK) return fmi2Error;
+    in->solver_live = true;
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
     while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
         char err[512];
@@ -57,8 +61,10 @@ static fmi2Status integrate(Instance *in, double t_end)
         REQUIRE(call, r != COSIM_FAILED, "%s", err);
         if (r == COSIM_REACHED) break;
         bool changed;
+        in->solver_live = false;
         if (handle_event(in, call, &changed) != fmi2OK) return fmi2Error;
         if (restart(in, call) != fmi2OK) return fmi2Error;
+        in->solver_live = true;
     }
     in->time = t_end;
     return fmi2OK;

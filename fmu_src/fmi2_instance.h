@@ -39,6 +39,7 @@ typedef struct {
     int events_in_window;
     double tolerance;            /* from fmi2SetupExperiment; 0: the default */
     void *cosim;                 /* Co-Simulation's integrator (cosim.h), made on first use */
+    bool solver_live;            /* CVODE holds this trajectory at `time`: the next step continues it */
     double last_successful_time;
 } Instance;
 

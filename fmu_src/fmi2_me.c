@@ -105,6 +105,7 @@ static void reset_instance(Instance *in)
     in->window_start = -INFINITY;
     in->events_in_window = 0;
     in->tolerance = 0;
+    in->solver_live = false;
     in->last_successful_time = 0;
 }
 

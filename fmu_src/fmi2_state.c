@@ -84,6 +84,9 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
     REQUIRE("fmi2GetFMUstate", s, "out of memory");
     *s = take(in);
     *state = s;
+    /* Co-Simulation restarts CVODE here, as a run restored from this state will:
+     * both continue from the same solver state, bit for bit. */
+    in->solver_live = false;
     return fmi2OK;
 }
 
@@ -95,6 +98,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
     REQUIRE("fmi2SetFMUstate", s->type == (int32_t)in->type,
             "the state was taken from an instance of the other interface");
     restore(in, s);
+    in->solver_live = false;
     return fmi2OK;
 }
 

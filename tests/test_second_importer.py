@@ -1,9 +1,10 @@
 """A second FMI importer, fmi-sim (Rust, crates.io), loads PainleveRod.fmu, runs
 the default experiment (an IWC) and agrees with fmpy as far as its solver allows.
 
-- Co-Simulation: both masters call fmi2DoStep on the same communication grid, so
-  the FMU's CVODE does the same work: they agree to round-off, and both agree
-  with fmpy's own CVode through Model Exchange to the solver tolerance.
+- Co-Simulation: both masters call fmi2DoStep on the same communication grid
+  (fmpy computes the points as i*h, fmi-sim sums h: they differ by ulps, and
+  CVODE stops exactly at each and continues), so they agree to the solver
+  tolerance, as both do with fmpy's own CVode through Model Exchange.
 - Model Exchange: fmi-sim integrates with forward Euler, step = output interval,
   events at step ends. fmpy's Euler is the same method, so the two agree to
   round-off at every step size; against CVode the difference is Euler's first
@@ -60,13 +61,14 @@ def test_co_simulation_agrees_with_fmpy_to_solver_tolerance(fmu_path, tmp_path, 
     ours = fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", start_values=start_values(case),
                              stop_time=stop, output_interval=interval, output=STATES + ["mode", "contact"])
     assert len(ours) == len(theirs)
-    for name in STATES:     # the same fmi2DoStep calls on the same FMU: round-off apart
-        assert np.max(np.abs(ours[name] - theirs[name])) <= 1e-12 * (1 + np.max(np.abs(ours[name])))
+    rtol = 1e-6             # the default experiment's, which both masters pass
+    for name in STATES:     # the same fmi2DoStep calls on the same FMU, up to ulps of t
+        assert np.max(np.abs(ours[name] - theirs[name])) <= 10 * rtol * (1 + np.max(np.abs(ours[name])))
     w_theirs = outcome_of(case, theirs, exact_events=False).w
     w_ours = outcome_of(case, ours, exact_events=False).w
-    assert w_theirs == pytest.approx(w_ours, abs=1e-12)
-    # fmpy's CVode (ME) at rtol 1e-10 against the FMU's CVODE at 1e-6 (the default experiment's)
-    assert abs(w_theirs - cvode[case].w) < 10 * 1e-6 * case.v0
+    assert w_theirs == pytest.approx(w_ours, abs=10 * rtol)
+    # fmpy's CVode (ME) at rtol 1e-10 against the FMU's CVODE at 1e-6
+    assert abs(w_theirs - cvode[case].w) < 10 * rtol * case.v0
     assert abs(w_theirs / case.v0 - case.e) < theorem_bound(case)
 
 

@@ -4,6 +4,7 @@ fmpy's native logger proxy keeps one logger for the whole process, so with it
 the last instance created would receive every instance's messages. The
 PainleveRod FMU formats its messages itself (a literal '%' arrives as '%%'),
 so each instance gets its Python logger directly."""
+import contextlib
 import shutil
 import tempfile
 
@@ -69,17 +70,23 @@ class LoadedFMU:
     def __exit__(self, *exc):
         self.close()
 
-    def simulate(self, what, **kwargs):
-        """fmpy.simulate_fmu on the loaded instance, events recorded; a failure raises
+    @contextlib.contextmanager
+    def fresh_run(self, what):
+        """The instance reset for a new run (after the first); a failure inside raises
         SimulationError naming `what` and quoting the FMU's last error message."""
         if self._used:
             self.fmu.reset()
         self._used = True
         self._errors.clear()
         try:
-            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.fmu,
-                                fmi_type="CoSimulation" if self.interface == "CS" else "ModelExchange",
-                                record_events=True, validate=False, **kwargs)
+            yield self.fmu
         except Exception as err:
             said = self._errors[-1] if self._errors else str(err)
             raise SimulationError(f"{what}: the FMU stopped: {said}") from err
+
+    def simulate(self, what, **kwargs):
+        """fmpy.simulate_fmu on the loaded instance, events recorded."""
+        with self.fresh_run(what):
+            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.fmu,
+                                fmi_type="CoSimulation" if self.interface == "CS" else "ModelExchange",
+                                record_events=True, validate=False, **kwargs)

@@ -1,0 +1,262 @@
+"""What an IWC case costs, and how the cost grows as eps -> 0: every way we have
+of running one, side by side in one process run, interleaved.
+
+    .venv/bin/python bench/bench.py                # the full table -> docs/benchmarks.md
+    .venv/bin/python bench/bench.py --quick        # fewer repeats, no sweep (a smoke run)
+
+Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
+  fmpy ME simulate_fmu  fmpy.simulate_fmu(CVode) from the .fmu, one call per case
+  fmpy ME fast loop     painleve Experiment: one instance, fmi2Reset between cases
+  fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
+  fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
+  fmpy CS fast loop     painleve Experiment(interface="CS"): fmi2DoStep, eps/2 apart
+  scipy <method>        painleve.reference (solve_ivp, the same model in Python)
+  native                bench/native: the FMU's .so under CVODE in C, no Python
+
+All run at the harness's tolerance, rtol = min(1e-6, eps/100), atol = rtol *
+nominal (y ~ eps^2, w ~ eps). Wall time per case is the median over repeats;
+the error is against the analytic e (the model's own O(eps ln 1/eps)) and
+against the tightest run (scipy DOP853 at rtol 1e-12, an independent code).
+RHS evaluations are counted where the runner lets us: fmpy's CVode calls the
+FMU's fmi2GetDerivatives from Python (counted by wrapping it), the scipy
+reference and the native driver count their own; fmpy's Co-Simulation hides
+the FMU's CVODE. Peak memory is each runner's process high-water mark (a
+child process per runner, same cases once).
+"""
+import argparse
+import math
+import os
+import pathlib
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+
+import fmpy                                              # noqa: E402
+from native_driver import run_native                     # noqa: E402
+from painleve import reference                           # noqa: E402
+from painleve.experiment import OUTPUTS, Case, Experiment, outcome_of   # noqa: E402
+
+FMU = ROOT / "build" / "PainleveRod.fmu"
+NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"
+EPSILONS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
+SCIPY = ("LSODA", "DOP853", "Radau", "BDF")
+VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0)
+
+
+def cases_at(eps):
+    """Theorem 1 at three theta0 and delta, Theorem 2 on both sides of w1*."""
+    t1 = [Case(epsilon=eps), Case(epsilon=eps, theta0=0.9, delta=0.0), Case(epsilon=eps, theta0=1.1, delta=0.5)]
+    w1s = Case(epsilon=eps, **VIDEO).w1_star
+    return t1 + [Case(epsilon=eps, w10=1.2 * w1s, **VIDEO), Case(epsilon=eps, w10=0.8 * w1s, **VIDEO)]
+
+
+class Counting:
+    """Counts an fmpy instance's fmi2GetDerivatives calls (one per CVode RHS evaluation)."""
+
+    def __init__(self, fmu):
+        self.calls, self._get = 0, fmu.getDerivatives
+
+        def counted(*args, **kwargs):
+            self.calls += 1
+            return self._get(*args, **kwargs)
+        fmu.getDerivatives = counted
+
+
+class Runners:
+    """Every runner as name -> f(case) -> dict(w, nfev, nsteps, nevents); instances made once."""
+
+    def __init__(self):
+        self.me, self.cs = Experiment(str(FMU)), Experiment(str(FMU), interface="CS")
+        self.euler = Experiment(str(FMU), solver="Euler")
+        self.me_count, self.euler_count = Counting(self.me.fmu), Counting(self.euler.fmu)
+
+    def names(self):
+        return (["fmpy ME simulate_fmu", "fmpy ME fast loop", "fmpy ME Euler", "fmpy CS simulate_fmu",
+                 "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"])
+
+    def run(self, name, case):
+        if name.endswith("simulate_fmu"):
+            return dict(w=self.simulate_fmu(case, "CS" if " CS " in name else "ME").w)
+        if name in ("fmpy ME fast loop", "fmpy ME Euler"):
+            experiment, counter = (self.me, self.me_count) if "fast" in name else (self.euler, self.euler_count)
+            before = counter.calls
+            o = experiment.run(case)
+            return dict(w=o.w, nfev=counter.calls - before, nevents=o.events)
+        if name == "fmpy CS fast loop":
+            return dict(w=self.cs.run(case).w)
+        if name.startswith("scipy "):
+            o = reference.run_reference(case, method=name.split()[1])
+            return dict(w=o.w, nfev=o.nfev, nsteps=o.nsteps, nevents=o.nevents)
+        raise KeyError(name)
+
+    def simulate_fmu(self, case, interface):
+        """fmpy.simulate_fmu from the .fmu file (unzip, load, run, free), with the harness's settings."""
+        experiment = self.cs if interface == "CS" else self.me
+        r = fmpy.simulate_fmu(str(FMU), fmi_type="CoSimulation" if interface == "CS" else "ModelExchange",
+                              start_values=case.start_values(), output=OUTPUTS, record_events=True,
+                              **experiment._solver_settings(case))
+        return outcome_of(case, r, exact_events=interface == "ME")
+
+    def close(self):
+        for e in (self.me, self.cs, self.euler):
+            e.close()
+
+
+def timed(f, *args):
+    t = time.perf_counter()
+    out = f(*args)
+    return time.perf_counter() - t, out
+
+
+def measure(repeats, epsilons):
+    """rows[(runner, eps)] = list over cases of dict(seconds=[...], w, counters)."""
+    runners = Runners()
+    names = runners.names()
+    rows = {(n, eps): [dict(seconds=[]) for _ in cases_at(eps)] for n in names for eps in epsilons}
+    for rep in range(repeats):
+        for eps in epsilons:
+            cases = cases_at(eps)
+            native = run_native(NATIVE, FMU, cases)                  # one process, timed per case inside
+            for i, case in enumerate(cases):
+                order = names[:-1][rep % (len(names) - 1):] + names[:-1][:rep % (len(names) - 1)]
+                for name in order:                                   # interleaved, rotated each repeat
+                    seconds, out = timed(runners.run, name, case)
+                    rows[name, eps][i]["seconds"].append(seconds)
+                    rows[name, eps][i].update(out)
+                n = native[i]
+                rows["native", eps][i]["seconds"].append(n["wall_seconds"])
+                rows["native", eps][i].update(w=n["w"], nfev=n["nfev"], nsteps=n["nsteps"], nevents=n["nevents"])
+        print(f"repeat {rep + 1}/{repeats} done", file=sys.stderr)
+    runners.close()
+    return names, rows
+
+
+def tightest(epsilons):
+    return {eps: [reference.run_reference(c, method="DOP853", rtol=1e-12).w for c in cases_at(eps)]
+            for eps in epsilons}
+
+
+def peak_memory(names, epsilons):
+    """Each runner's peak RSS (MiB) in a fresh child process running every case once."""
+    peaks = {}
+    for name in names:
+        if name == "native":
+            rows = run_native(NATIVE, FMU, [c for eps in epsilons for c in cases_at(eps)])
+            peaks[name] = rows[0]["peak_rss_kib"] / 1024
+            continue
+        code = (f"import sys, resource; sys.argv = ['bench']; sys.path.insert(0, {str(HERE)!r}); import bench; "
+                f"r = bench.Runners(); [r.run({name!r}, c) for e in {tuple(epsilons)!r} for c in bench.cases_at(e)]; "
+                "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)")
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+        peaks[name] = int(out.stdout.split()[-1]) / 1024
+    return peaks
+
+
+def growth(per_eps):
+    """Fitted exponent p of count ~ (ln 1/eps)^p over the eps given (NaN without counts)."""
+    eps = [e for e, v in per_eps.items() if v is not None and v > 0]
+    if len(eps) < 2:
+        return math.nan
+    x, y = np.log([math.log(1 / e) for e in eps]), np.log([per_eps[e] for e in eps])
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def summarize(names, rows, ref, epsilons):
+    table = []
+    for name in names:
+        for eps in epsilons:
+            cs = rows[name, eps]
+            cases = cases_at(eps)
+            median = lambda key: (statistics.median(c[key] for c in cs) if all(key in c for c in cs) else None)  # noqa
+            table.append(dict(
+                runner=name, eps=eps,
+                ms=1e3 * statistics.median(statistics.median(c["seconds"]) for c in cs),
+                nfev=median("nfev"), nsteps=median("nsteps"), nevents=median("nevents"),
+                err_e=max(abs(c["w"] / k.v0 - k.e) for c, k in zip(cs, cases) if k.predicts_iwc),
+                err_ref=max(abs(c["w"] - r) for c, r in zip(cs, ref[eps]))))
+    return table
+
+
+def fmt(x, spec):
+    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
+
+
+def markdown(table, peaks, names, epsilons, sweep, command, seconds):
+    out = [f"# Benchmarks: cost per IWC case", "",
+           f"Command: `{command}` ({seconds:.0f} s). Machine: {platform.node()}, {platform.machine()}, "
+           f"{os.cpu_count()} cores, {platform.platform()}, Python {platform.python_version()}, "
+           f"load average at start {os.getloadavg()[0]:.2f}.", "",
+           "Cases per eps: Theorem 1 at (theta0, delta) = (1, 1), (0.9, 0), (1.1, 0.5) and Theorem 2 "
+           "(the video's rod) at w10 = 1.2 and 0.8 w1*; alpha = mu = 3. rtol = min(1e-6, eps/100) for every "
+           "solver but Euler (h = eps/100). `ms` the median over cases of the median wall time over repeats; "
+           "`nfev`, `steps`, `events` medians over cases; `|w/v0-e|` the largest over the IWC cases (the "
+           "model's O(eps ln 1/eps)); `|w-w_ref|` the largest against scipy DOP853 at rtol 1e-12.", "",
+           "| runner | eps | ms/case | nfev | steps | events | abs(w/v0-e) | abs(w-w_ref) |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in table:
+        out.append(f"| {r['runner']} | {r['eps']:.0e} | {r['ms']:.3f} | {fmt(r['nfev'], '.0f')} | "
+                   f"{fmt(r['nsteps'], '.0f')} | {fmt(r['nevents'], '.0f')} | {r['err_e']:.2e} | {r['err_ref']:.2e} |")
+    out += ["", "## Growth as eps -> 0 and peak memory", "",
+            "p: the fitted exponent of count ~ (ln 1/eps)^p from eps = 1e-2 to 1e-6 (p <= 1: no faster than "
+            "ln 1/eps). Peak RSS: the runner's own process, every case once.", "",
+            "| runner | p (nfev) | p (steps) | ms at 1e-2 -> 1e-6 | peak RSS MiB |", "|---|---|---|---|---|"]
+    by = {(r["runner"], r["eps"]): r for r in table}
+    for name in names:
+        p_f = growth({e: by[name, e]["nfev"] for e in epsilons})
+        p_s = growth({e: by[name, e]["nsteps"] for e in epsilons})
+        out.append(f"| {name} | {fmt(p_f, '.2f')} | {fmt(p_s, '.2f')} | {by[name, epsilons[0]]['ms']:.3f} -> "
+                   f"{by[name, epsilons[-1]]['ms']:.3f} | {fmt(peaks.get(name), '.0f')} |")
+    out += ["", "## Ratios per eps (ms/case)", "",
+            "| eps | fastest scipy | ME fast loop / fastest scipy | fastest scipy / CS fast loop | "
+            "CS fast loop / native |", "|---|---|---|---|---|"]
+    for eps in epsilons:
+        sci = min((by[f"scipy {m}", eps] for m in SCIPY), key=lambda r: r["ms"])
+        me, cs, nat = by["fmpy ME fast loop", eps]["ms"], by["fmpy CS fast loop", eps]["ms"], by["native", eps]["ms"]
+        out.append(f"| {eps:.0e} | {sci['runner']} {sci['ms']:.3f} | {me / sci['ms']:.2f} | {sci['ms'] / cs:.1f} | "
+                   f"{cs / nat:.2f} |")
+    if sweep:
+        out += ["", "## Sweep on dask", ""] + sweep
+    return "\n".join(out) + "\n"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="2 repeats, eps 1e-2 and 1e-4, no memory, no sweep")
+    parser.add_argument("--sweep-cases", type=int, default=10_000)
+    parser.add_argument("--out", default=str(ROOT / "docs" / "benchmarks.md"))
+    args = parser.parse_args(argv)
+    for path, how in ((FMU, "bash run.sh test (or cmake --build build)"), (NATIVE, "cmake --build build")):
+        if not path.exists():
+            sys.exit(f"{path} is missing: {how} builds it")
+    start = time.monotonic()
+    epsilons = (1e-2, 1e-4) if args.quick else EPSILONS
+    names, rows = measure(2 if args.quick else args.repeats, epsilons)
+    table = summarize(names, rows, tightest(epsilons), epsilons)
+    peaks = {} if args.quick else peak_memory(names, epsilons)
+    sweep = [] if args.quick else sweep_rows(args.sweep_cases)
+    command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")
+    text = markdown(table, peaks, names, epsilons, sweep, command, time.monotonic() - start)
+    print(text)
+    if not args.quick:
+        pathlib.Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        pathlib.Path(args.out).write_text(text)
+        print(f"written to {args.out}", file=sys.stderr)
+
+
+def sweep_rows(n):
+    from sweep_bench import sweep_table
+    return sweep_table(FMU, n)
+
+
+if __name__ == "__main__":
+    main()
