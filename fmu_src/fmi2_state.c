@@ -1,8 +1,8 @@
 /* FMI 2.0 FMU state: get, set, free, serialize, deserialize.
  *
  * A state is a Snapshot, a plain struct with no pointers. Co-Simulation
- * restarts CVODE at every step, so the snapshot holds everything either
- * interface needs to continue identically.
+ * restarts CVODE wherever a state is taken or restored, so the snapshot
+ * holds everything either interface needs to continue identically.
  *
  * Serialized form (little endian), self-describing and versioned:
  *   "PRODSTAT" | u32 version | u32 guid length | guid | u32 field count |
