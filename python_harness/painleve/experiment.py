@@ -21,12 +21,13 @@ What it knows of fmpy 0.3.32 and chooses for the user:
 - Through Co-Simulation (interface="CS") the FMU integrates itself with its
   embedded CVODE and the master sees communication points only (eps/2 apart):
   the state at the return to y = 0 is then recovered exactly by running the
-  free flight (a closed form) back from the first point after it. Event
-  counts are not visible there (reported as -1), durations to eps/2. `run`
-  calls fmi2DoStep itself and reads five states, the mode and contact at each
-  point (the Co-Simulation fast loop); `simulate` is fmpy's simulate_fmu.
+  free flight (a closed form) back from the first point after it. `simulate`
+  (fmpy's simulate_fmu, points eps/2 apart) sees durations to eps/2 and no
+  events; `run` (the Co-Simulation fast loop) reads the phases exactly from
+  the FMU's logEvents messages and the state only every 4 eps.
 """
 import math
+import re
 from dataclasses import asdict, dataclass
 from functools import cached_property
 
@@ -35,7 +36,7 @@ import numpy as np
 from . import analytic as an
 from .instance import LoadedFMU, SimulationError
 
-STATES = ["v", "y", "w", "theta", "phi"]     # those an Outcome reads (values[1] is y)
+STATES = ["v", "y", "w", "theta", "phi"]     # those an Outcome reads
 OUTPUTS = STATES + ["mode", "contact"]
 
 
@@ -156,12 +157,13 @@ class Experiment(LoadedFMU):
     def __init__(self, fmu_path, *, interface="ME", solver="CVode", relative_tolerance=None, steps_per_epsilon=100):
         if solver not in ("CVode", "Euler"):
             raise ValueError(f"solver must be 'CVode' or 'Euler', not {solver!r}")
+        self._switches = []     # the FMU's logged mode switches in the current CS run
         super().__init__(fmu_path, interface=interface)
         self.solver = solver
         self.relative_tolerance = relative_tolerance
         self.steps_per_epsilon = steps_per_epsilon
         self._vr_yw, self._vr_contact = [self.vr["y"], self.vr["w"]], [self.vr["contact"]]
-        self._vr_states, self._vr_mode = [self.vr[k] for k in STATES], [self.vr["mode"]]
+        self._vr_states = [self.vr[k] for k in STATES]
 
     def _back_on_floor(self):
         """fmpy's step_finished callback: stop one step after the rod, having touched,
@@ -202,33 +204,64 @@ class Experiment(LoadedFMU):
     def run(self, case):
         """One case, reduced to its Outcome."""
         if self.interface == "CS":
-            return outcome_of(case, self._step_through(case), exact_events=False)
+            return self._run_cs(case)
         return outcome_of(case, self.simulate(case))
 
-    def _step_through(self, case):
-        """Co-Simulation's fast loop: fmi2DoStep from one communication point to the
-        next, reading only the outputs `outcome_of` needs, until the rod is back at
-        y = 0. The same trajectory as `simulate` with a tenth of its calls."""
+    def _log(self, status, category, message):
+        super()._log(status, category, message)
+        if category == "logEvents" and (switch := SWITCH.match(message)):
+            self._switches.append(switch)
+
+    def _run_cs(self, case):
+        """Co-Simulation's fast loop: the FMU's event log (logEvents, one message per mode
+        switch, with its time) tells the phases exactly, so the master steps in chunks of
+        CHUNK eps and reads the state only at the end of each, until the rod has left the
+        floor; the return to y = 0 is then the closed-form free flight run back."""
         case.check()
         settings = self._solver_settings(case)
-        h, stop = settings["output_interval"], settings["stop_time"]
+        h, stop = CHUNK * case.epsilon, settings["stop_time"]
         start = case.start_values()
-        rows, touched = [], False
+        self._switches = []
         with self.fresh_run(case) as fmu:
+            fmu.setDebugLogging(True, ["logEvents"])
             fmu.setupExperiment(tolerance=settings["relative_tolerance"], startTime=0.0)
             fmu.setReal([self.vr[k] for k in start], list(start.values()))
             fmu.enterInitializationMode()
             fmu.exitInitializationMode()
-            for i in range(1 + math.ceil(stop / h)):
-                if i:
-                    fmu.doStep((i - 1) * h, h)
-                values, mode, contact = (fmu.getReal(self._vr_states), fmu.getInteger(self._vr_mode)[0],
-                                         fmu.getBoolean(self._vr_contact)[0])
-                rows.append((i * h, *values, mode, contact))
-                touched |= bool(contact)
-                if touched and not contact and values[1] >= 0:
+            t = 0.0
+            while t < stop:
+                fmu.doStep(t, h)
+                t += h
+                left = any(m["contact_to"] == "0" for m in self._switches)
+                if left and (state := dict(zip(STATES, fmu.getReal(self._vr_states))))["y"] >= 0:
                     break
-        return np.array(rows, dtype=[("time", float)] + [(k, float) for k in STATES] + [("mode", int), ("contact", bool)])
+            else:
+                raise SimulationError(f"{case} did not return to y = 0 within t = {stop:.3g} (is eps small enough "
+                                      f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+        s, back = flight_back_to_floor(state) if state["y"] > 0 else (0.0, state)
+        return outcome_from_switches(case, [(float(m["t"]), int(m["contact_to"]), int(m["mode_to"]))
+                                            for m in self._switches], t + s, back)
+
+
+# The FMU's logEvents message for a switch (fmi2_me.c, handle_event).
+SWITCH = re.compile(r"t = (?P<t>\S+): indicator .*; contact \d -> (?P<contact_to>\d), mode \S+ -> (?P<mode_to>\S+?)(;|$)")
+CHUNK = 4     # communication step in eps: well inside the flight after the return (O(1) long)
+
+
+def outcome_from_switches(case, switches, t_return, back):
+    """The Outcome from the mode switches [(t, contact, mode) after each] of a run that
+    starts on the floor at t = 0 and returns to it at t_return in state `back`."""
+    stick_start = next((t for t, contact, mode in switches if contact and mode == 0), None)
+    nan = math.nan
+    if stick_start is None:
+        compression, stick, lift_off = nan, nan, t_return
+    else:
+        stick_end = next(t for t, contact, mode in switches if t > stick_start and (mode != 0 or not contact))
+        compression, stick, lift_off = stick_start, stick_end - stick_start, t_return - stick_end
+    return Outcome(case=case, iwc=stick_start is not None, w=float(back["w"]), theta=float(back["theta"]),
+                   phi=float(back["phi"]), v=float(back["v"]), t_return=float(t_return),
+                   compression=float(compression), stick=float(stick), lift_off=float(lift_off),
+                   events=len([t for t, *_ in switches if t <= t_return]))
 
 
 def _first(mask, start=0):

@@ -1,0 +1,47 @@
+"""The benchmark's runners compute the same IWC, and its growth fit reads exponents right.
+(Speed is the benchmark's business, bench/bench.py; here only what its numbers mean.)"""
+import math
+import sys
+
+import pytest
+
+from conftest import ROOT
+
+sys.path.insert(0, str(ROOT / "bench"))
+import bench  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def runners(fmu_path):
+    if not bench.NATIVE.exists():
+        pytest.fail(f"{bench.NATIVE} is missing: `bash run.sh test` builds it")
+    r = bench.Runners()
+    yield r
+    r.close()
+
+
+@pytest.mark.parametrize("eps", [1e-3, 1e-5])
+def test_every_runner_gives_the_same_iwc(runners, eps):
+    cases = bench.cases_at(eps)
+    native = bench.run_native(bench.NATIVE, bench.FMU, cases)
+    for i, case in enumerate(cases):
+        ws = {name: runners.run(name, case)["w"] for name in runners.names() if name != "native"}
+        ws["native"] = native[i]["w"]
+        rtol = min(1e-6, eps / 100)
+        for name, w in ws.items():
+            if name == "fmpy ME Euler":     # first order, h = eps/100: a few % of w (test_second_importer)
+                assert w == pytest.approx(ws["native"], rel=0.05), name
+            else:                           # every CVODE and scipy run at rtol: agree to ~100 rtol
+                assert abs(w - ws["native"]) <= 100 * rtol * case.v0, (name, w, ws["native"])
+        if case.predicts_iwc:               # Theorem 1/2: w/v0 -> e, error O(eps ln 1/eps)
+            assert abs(ws["native"] / case.v0 - case.e) < 3 * eps * math.log(1 / eps)
+        else:                               # above w1*: lifts off with w = O(eps)
+            assert 0 < ws["native"] < 5 * eps
+
+
+def test_growth_fit_reads_the_exponent_of_ln_one_over_eps():
+    epsilons = bench.EPSILONS
+    for p in (0.0, 0.5, 1.0, 2.0):
+        counts = {e: 40 * math.log(1 / e) ** p for e in epsilons}
+        assert bench.growth(counts) == pytest.approx(p, abs=1e-9)
+    assert math.isnan(bench.growth({e: None for e in epsilons}))
