@@ -151,13 +151,15 @@ def peak_memory(names, epsilons):
     for name in names:
         if name == "native":
             rows = run_native(NATIVE, FMU, [c for eps in epsilons for c in cases_at(eps)])
-            peaks[name] = rows[0]["peak_rss_kib"] / 1024
+            peaks[name] = f"{rows[0]['peak_rss_kib'] / 1024:.1f}"
             continue
         code = (f"import sys, resource; sys.argv = ['bench']; sys.path.insert(0, {str(HERE)!r}); import bench; "
-                f"r = bench.Runners(); [r.run({name!r}, c) for e in {tuple(epsilons)!r} for c in bench.cases_at(e)]; "
-                "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)")
+                "rss = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss; "
+                f"r = bench.Runners(); base = rss(); "
+                f"[r.run({name!r}, c) for e in {tuple(epsilons)!r} for c in bench.cases_at(e)]; print(base, rss())")
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-        peaks[name] = int(out.stdout.split()[-1]) / 1024
+        base, peak = (int(x) / 1024 for x in out.stdout.split()[-2:])
+        peaks[name] = f"{base:.0f} -> {peak:.0f}"
     return peaks
 
 
@@ -207,14 +209,16 @@ def markdown(table, peaks, names, epsilons, sweep, command, seconds):
                    f"{fmt(r['nsteps'], '.0f')} | {fmt(r['nevents'], '.0f')} | {r['err_e']:.2e} | {r['err_ref']:.2e} |")
     out += ["", "## Growth as eps -> 0 and peak memory", "",
             "p: the fitted exponent of count ~ (ln 1/eps)^p from eps = 1e-2 to 1e-6 (p <= 1: no faster than "
-            "ln 1/eps). Peak RSS: the runner's own process, every case once.", "",
+            "ln 1/eps). Peak RSS: the runner's own process running every case once, after its imports and "
+            "instances (Python: three FMU instances, fmpy, scipy) -> at its end; the native "
+            "driver's whole process.", "",
             "| runner | p (nfev) | p (steps) | ms at 1e-2 -> 1e-6 | peak RSS MiB |", "|---|---|---|---|---|"]
     by = {(r["runner"], r["eps"]): r for r in table}
     for name in names:
         p_f = growth({e: by[name, e]["nfev"] for e in epsilons})
         p_s = growth({e: by[name, e]["nsteps"] for e in epsilons})
         out.append(f"| {name} | {fmt(p_f, '.2f')} | {fmt(p_s, '.2f')} | {by[name, epsilons[0]]['ms']:.3f} -> "
-                   f"{by[name, epsilons[-1]]['ms']:.3f} | {fmt(peaks.get(name), '.0f')} |")
+                   f"{by[name, epsilons[-1]]['ms']:.3f} | {peaks.get(name, '–')} |")
     out += ["", "## Ratios per eps (ms/case)", "",
             "| eps | fastest scipy | ME fast loop / fastest scipy | fastest scipy / CS fast loop | "
             "CS fast loop / native |", "|---|---|---|---|---|"]

@@ -4,7 +4,7 @@
  * side is smooth between events (MODEL.md §2):
  *   contact  F_N = g/eps with g = -y/eps - delta w (the linear branch of eq FN)
  *   slip     s = +1 / -1: eq Painleve with q_s, p_s, c_s
- *   stick    s = 0: the Filippov field of Proposition lem:Filippov, v' = 0
+ *   stick    s = 0: the exact Filippov field, v' = 0 (see mode_gains)
  * Event indicators (slot: meaning per mode):
  *   0  y                       contact surface
  *   1  g                       F_N = 0 while in contact, F_N > 0 ahead in flight
@@ -44,6 +44,8 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
     r.c_minus = -al * (c + mu * s);
     r.S_w = (1 + al) / k;                       /* eq Sw */
     r.S_phi = -al * c / k;
+    r.A_w = -al * s * c / k;                    /* the sticking field: see mode_gains */
+    r.A_phi = al * s / k;
     return r;
 }
 
@@ -80,28 +82,41 @@ double rod_energy(const RodParams *p, const double x[ROD_NX])
 
 static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
 
-/* How F_N enters the mode's right-hand side: v' = (a) + g.v F_N, w' = b + g.w F_N,
- * phi' = g.phi F_N, with g taken from k (coefficients) or its theta-derivative. */
-typedef struct { double v, w, phi; } ForceGains;
+/* How a and F_N enter the mode's right-hand side:
+ *   v' = a + g.v F_N (0 while sticking),  w' = b + g.w_a a + g.w F_N,
+ *   phi' = g.phi_a a + g.phi F_N,
+ * with g taken from k (coefficients) or its theta-derivative.
+ *
+ * While sticking the friction force is whatever holds v' = 0,
+ * F_T = (a + alpha sin cos F_N)/k (k = 1 + alpha sin^2), and eq dynrodsc with
+ * that F_T gives w' = b + S_w F_N - alpha sin cos a/k, phi' = S_phi F_N +
+ * alpha sin a/k: the Filippov combination of the two slip fields with weight
+ * (a + q_- F_N)/((q_- - q_+) F_N) on slip+. Proposition lem:Filippov (and
+ * MODEL.md §1) take the weight q_-/(q_- - q_+), i.e. drop the a-terms: O(1)
+ * over a stick of duration O(eps), so Theorem 1's limits are the same, but
+ * without them (w', phi') are not those of any friction force, and the stuck
+ * rod gains energy at the rate phi^3 sin cos. With them F_T v = 0 and only the
+ * damper works. */
+typedef struct { double v, w, phi, w_a, phi_a; } ModeGains;
 
-static ForceGains force_gains(const RodCoeffs *k, RodMode m)
+static ModeGains mode_gains(const RodCoeffs *k, RodMode m)
 {
-    if (sticking(m)) return (ForceGains){ 0, k->S_w, k->S_phi };        /* Proposition lem:Filippov */
-    if (m.slip >= 0) return (ForceGains){ k->q_plus, k->p_plus, k->c_plus }; /* eq PainleveEqs */
-    return (ForceGains){ k->q_minus, k->p_minus, k->c_minus };
+    if (sticking(m)) return (ModeGains){ 0, k->S_w, k->S_phi, k->A_w, k->A_phi };  /* exact Filippov */
+    if (m.slip >= 0) return (ModeGains){ k->q_plus, k->p_plus, k->c_plus, 0, 0 };  /* eq PainleveEqs */
+    return (ModeGains){ k->q_minus, k->p_minus, k->c_minus, 0, 0 };
 }
 
 void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX])
 {
     const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
-    const ForceGains g = force_gains(&k, m);
+    const ModeGains g = mode_gains(&k, m);
     const double F = rod_normal_force(p, m, x);
     dx[ROD_X] = x[ROD_V];
     dx[ROD_Y] = x[ROD_W];
     dx[ROD_THETA] = x[ROD_PHI];
     dx[ROD_V] = sticking(m) ? 0 : k.a + g.v * F;   /* v' = 0 exactly on the sticking set */
-    dx[ROD_W] = k.b + g.w * F;
-    dx[ROD_PHI] = g.phi * F;
+    dx[ROD_W] = k.b + g.w_a * k.a + g.w * F;
+    dx[ROD_PHI] = g.phi_a * k.a + g.phi * F;
 }
 
 /* d/dtheta of the coefficients in RodCoeffs (phi enters a and b only). */
@@ -120,6 +135,8 @@ static RodCoeffs coeffs_dtheta(const RodParams *p, double theta, double phi)
     d.c_minus = al * (s - mu * c);
     d.S_w = -(1 + al) * dk / (k * k);
     d.S_phi = al * s / k + al * c * dk / (k * k);
+    d.A_w = -al * c2s2 / k + al * s * c * dk / (k * k);
+    d.A_phi = al * c / k - al * s * dk / (k * k);
     return d;
 }
 
@@ -128,6 +145,7 @@ void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double 
     const double th = x[ROD_THETA], phi = x[ROD_PHI], eps = p->epsilon;
     const RodCoeffs k = rod_coeffs(p, th, phi), dk = coeffs_dtheta(p, th, phi);
     const double F = rod_normal_force(p, m, x);
+    const double a_phi = -2 * phi * cos(th);     /* da/dphi; db/dphi = 2 phi sin */
     /* F = g/eps in contact: dF/dy = -1/eps^2, dF/dw = -delta/eps */
     const double F_y = m.contact ? -1 / (eps * eps) : 0, F_w = m.contact ? -p->delta / eps : 0;
     for (int i = 0; i < ROD_NX; ++i)
@@ -135,18 +153,19 @@ void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double 
     J[ROD_X][ROD_V] = 1;
     J[ROD_Y][ROD_W] = 1;
     J[ROD_THETA][ROD_PHI] = 1;
-    const ForceGains g = force_gains(&k, m), dg = force_gains(&dk, m);
+    const ModeGains g = mode_gains(&k, m), dg = mode_gains(&dk, m);
     if (!sticking(m)) {
         J[ROD_V][ROD_THETA] = dk.a + dg.v * F;
-        J[ROD_V][ROD_PHI] = -2 * phi * cos(th);
+        J[ROD_V][ROD_PHI] = a_phi;
         J[ROD_V][ROD_Y] = g.v * F_y;
         J[ROD_V][ROD_W] = g.v * F_w;
     }
-    J[ROD_W][ROD_THETA] = dk.b + dg.w * F;
-    J[ROD_W][ROD_PHI] = 2 * phi * sin(th);
+    J[ROD_W][ROD_THETA] = dk.b + dg.w_a * k.a + g.w_a * dk.a + dg.w * F;
+    J[ROD_W][ROD_PHI] = 2 * phi * sin(th) + g.w_a * a_phi;
     J[ROD_W][ROD_Y] = g.w * F_y;
     J[ROD_W][ROD_W] = g.w * F_w;
-    J[ROD_PHI][ROD_THETA] = dg.phi * F;
+    J[ROD_PHI][ROD_THETA] = dg.phi_a * k.a + g.phi_a * dk.a + dg.phi * F;
+    J[ROD_PHI][ROD_PHI] = g.phi_a * a_phi;
     J[ROD_PHI][ROD_Y] = g.phi * F_y;
     J[ROD_PHI][ROD_W] = g.phi * F_w;
 }

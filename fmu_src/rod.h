@@ -26,11 +26,14 @@ typedef struct {
     int slip;     /* +1 slip forward, 0 stick, -1 slip backward */
 } RodMode;
 
-/* Coefficients of eq coeffs and eq Sw at one (theta, phi). */
+/* Coefficients of eq coeffs and eq Sw at one (theta, phi). Sticking follows
+ * w' = b + A_w a + S_w F_N, phi' = A_phi a + S_phi F_N (the exact Filippov
+ * field; Proposition lem:Filippov keeps only S_w, S_phi: see rod.c). */
 typedef struct {
     double a, b;
     double q_plus, q_minus, p_plus, p_minus, c_plus, c_minus;
     double S_w, S_phi;
+    double A_w, A_phi;
 } RodCoeffs;
 
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);

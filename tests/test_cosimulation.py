@@ -101,7 +101,9 @@ def test_wrong_communication_point_is_an_error(unzipdir):
 
 
 def test_chattering_ends_the_step_with_an_error_and_the_instance_survives(unzipdir):
-    rod = Slave(unzipdir, theta=0.5908, delta=10.0, epsilon=1e-2)
+    # The Zeno guard: 100 events within eps^2. A rod spinning at phi = 3e4 with eps = 0.1 dips its
+    # end below the floor about every 2e-4 time units (several events each), far faster than eps^2.
+    rod = Slave(unzipdir, theta=0.3, phi=3e4, y=0.5, epsilon=0.1, delta=0.0, mu=1.0)
     with pytest.raises(FMICallException):
         for _ in range(20):
             rod.step(0.5)

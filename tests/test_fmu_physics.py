@@ -1,10 +1,19 @@
 """The FMU's physics against laws and closed forms: free flight, energy,
 quasi-static slipping, Filippov sticking, and impact without collision."""
+from ctypes import POINTER, c_double
+
+import fmpy
 import numpy as np
 import pytest
 
+from me_driver import Rod
 from painleve import analytic as an
 from rod_sim import event_count, mode_changes, phases, rod_energy, simulate
+
+
+@pytest.fixture(scope="module")
+def unzipdir(fmu_path, tmp_path_factory):
+    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
 def test_free_flight_matches_closed_form(fmu_path):
@@ -122,3 +131,58 @@ def test_iwc_returns_with_w_equal_to_e_v0(fmu_path, solver, rtol, tolerance):
     e = an.e(p["delta"], p["theta"], alpha=3, mu=3)
     assert r["w"][i] > 0
     assert abs(r["w"][i] / p["v"] - e) < tolerance * e
+
+
+# ------------------------------------------------------------- sticking energy
+# The Theorem 1 default with delta = 0: compression, a stick of duration O(eps),
+# the short backward slip at the fold, flight. Nothing dissipates while sticking.
+STICK_NO_DAMPING = dict(alpha=3, mu=3, delta=0.0, theta=1.0, phi=0.5, v=1.0, y=0.0, w=0.0)
+
+
+def test_energy_never_increases_through_a_stick_without_damping(fmu_path):
+    # The exact Filippov field holds v' = 0 with the friction force F_T of MODEL.md §1, which
+    # does no work (F_T v = 0): E is constant while sticking, falls while slipping, constant in
+    # flight. Proposition lem:Filippov's leading-order field drops a and gains phi^3 sin cos.
+    eps, rtol = 1e-3, 1e-9
+    r = simulate(fmu_path, 0.02, rtol=rtol, output_interval=eps / 20, epsilon=eps, **STICK_NO_DAMPING)
+    assert phases(r)[:2] == [(True, 1), (True, 0)] and not r["contact"][-1]
+    stick = np.flatnonzero(r["mode"] == 0)
+    assert len(stick) > 20, "the stick must be sampled densely"
+    E = r["energy"]
+    np.testing.assert_allclose(E, rod_energy(r, alpha=3, epsilon=eps), rtol=1e-12, atol=1e-12)
+    bound = 10 * rtol * np.max(np.abs(E))
+    assert np.max(np.diff(E)) <= bound, f"energy rises by {np.max(np.diff(E)):.3g} in one sample"
+    assert abs(E[stick[-1]] - E[stick[0]]) <= bound, "no work is done while sticking"
+    assert E[-1] < E[0] - 0.1                                # friction takes its share while slipping
+
+
+def energy_gradient(x, alpha, epsilon):
+    """d energy / d (x, v, y, w, theta, phi) of rod_sim.rod_energy (the FMU's energy)."""
+    _, v, y, w, th, ph = x
+    s, c = np.sin(th), np.cos(th)
+    Xd, Yd = v + ph * s, w + ph * c
+    return np.array([0.0, Xd, 1 + min(y, 0) / epsilon**2, Yd, Xd * ph * c - Yd * ph * s + c,
+                     Xd * s + Yd * c + ph / alpha])
+
+
+@pytest.mark.parametrize("delta", [0.0, 1.0])
+@pytest.mark.parametrize("theta", [0.7, 1.0, 1.3, 2.0])
+@pytest.mark.parametrize("phi", [-0.8, 0.5, 1.2])
+def test_sticking_derivatives_dissipate_only_in_the_damper(unzipdir, delta, theta, phi):
+    # Pointwise, from fmi2GetDerivatives: dE/dt = F_N w - F_T v + d(spring)/dt = -delta w^2/eps
+    # with v = 0 (the spring's rate y w/eps^2 cancels the elastic part of F_N w).
+    alpha, eps = 3.0, 1e-3
+    for w in (-2e-4, 0.0, 2e-4):
+        rod = Rod(unzipdir)
+        rod.initialize(alpha=alpha, mu=3.0, delta=delta, epsilon=eps, x=0.0, v=0.0, y=-1e-6, w=w,
+                       theta=theta, phi=phi)
+        assert (bool(rod.fmu.getBoolean([rod.vr["contact"]])[0]), rod.fmu.getInteger([rod.vr["mode"]])[0]) \
+            == (True, 0), "the state must stick"
+        x, dx = rod.x.copy(), np.zeros(6)
+        rod.fmu.getDerivatives(dx.ctypes.data_as(POINTER(c_double)), 6)
+        assert dx[1] == 0.0
+        grad = energy_gradient(x, alpha, eps)
+        rate, damper = grad @ dx, -delta * x[3] ** 2 / eps
+        scale = np.abs(grad) @ np.abs(dx)                   # round-off of the sum is ~1e-16 of this
+        rod.free()
+        assert abs(rate - damper) <= 1e-13 * scale, (rate, damper, scale)

@@ -256,7 +256,8 @@ def outcome_from_switches(case, switches, t_return, back):
     if stick_start is None:
         compression, stick, lift_off = nan, nan, t_return
     else:
-        stick_end = next(t for t, contact, mode in switches if t > stick_start and (mode != 0 or not contact))
+        stick_end = next((t for t, contact, mode in switches if t > stick_start and (mode != 0 or not contact)),
+                         t_return)
         compression, stick, lift_off = stick_start, stick_end - stick_start, t_return - stick_end
     return Outcome(case=case, iwc=stick_start is not None, w=float(back["w"]), theta=float(back["theta"]),
                    phi=float(back["phi"]), v=float(back["v"]), t_return=float(t_return),
@@ -302,7 +303,7 @@ def outcome_of(case, r, exact_events=True):
     if end is None:
         raise SimulationError(f"{case} did not return to y = 0 within t = {t[-1]:.3g} (is eps small enough "
                               f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
-    stick_start = _first(contact & (mode == 0), touch)
+    stick_start = _first(contact[:end] & (mode[:end] == 0), touch)    # a stick after the return is not this IWC's
     nan = math.nan
     if stick_start is None:
         compression, stick, lift_off = nan, nan, t[end] - t[touch]

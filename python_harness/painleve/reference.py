@@ -9,14 +9,16 @@ restart of solve_ivp from each event state. Modes:
 * ``flight``  y > 0 or no compressive force: F_N = 0, v' = a, w' = b, phi' = 0;
 * ``slip+`` / ``slip-``  contact, v > 0 / v < 0: eq Painleve with q_s, p_s, c_s
   and F_N = (-y/eps - delta w)/eps (the linear branch of eq FN);
-* ``stick``  contact, v = 0 held: the Filippov field of Proposition
-  lem:Filippov, v' = 0, w' = b + S_w F_N, phi' = S_phi F_N (``filippov="paper"``,
-  MODEL.md's and the FMU's). ``filippov="exact"`` is the true Filippov convex
-  combination of the two slip fields, which also carries a: w' gains
-  -alpha sin cos a/k, phi' gains alpha sin a/k (k = 1 + alpha sin^2). The
-  paper's form drops these O(1) terms (O(eps) over a stick of duration O(eps):
-  Theorem 1's limits are the same) and, unlike the exact field, does work while
-  sticking: dE/dt gains phi^3 sin cos (tests/test_reference.py shows both).
+* ``stick``  contact, v = 0 held: the exact Filippov field (``filippov="exact"``,
+  the default and the FMU's), the convex combination of the two slip fields
+  that holds v' = 0: v' = 0, w' = b + S_w F_N - alpha sin cos a/k,
+  phi' = S_phi F_N + alpha sin a/k (k = 1 + alpha sin^2), i.e. eq dynrodsc with
+  the sticking friction force F_T = (a + alpha sin cos F_N)/k of MODEL.md §1.
+  ``filippov="paper"`` is the paper's leading-order field of Proposition
+  lem:Filippov (and MODEL.md §1), w' = b + S_w F_N, phi' = S_phi F_N: it drops
+  the O(1) a-terms (O(eps) over a stick of duration O(eps): Theorem 1's limits
+  are the same) and, unlike the exact field, does work while sticking: dE/dt
+  gains phi^3 sin cos (tests/test_reference.py shows both).
 
 Switching surfaces (each a terminal event, watched only in the modes where it
 can end the mode): y = 0 (touch-down, and the return that ends a run),
@@ -91,14 +93,15 @@ def _lex_sign(*derivatives):
 class Rod:
     """The rod's parameters and, per mode, its right-hand side, Jacobian and switching functions.
 
-    filippov picks the sticking field: "paper" (Proposition lem:Filippov as MODEL.md
-    states it; what the FMU integrates) or "exact" (the convex combination of the slip
-    fields that holds v' = 0, a included); see the module docstring."""
+    filippov picks the sticking field: "exact" (the convex combination of the slip
+    fields that holds v' = 0, a included; what the FMU integrates) or "paper" (the
+    leading-order field of Proposition lem:Filippov as MODEL.md states it, which drops
+    a); see the module docstring."""
     alpha: float = 3.0
     mu: float = 3.0
     delta: float = 1.0
     epsilon: float = 1e-3
-    filippov: str = "paper"     # the sticking field: "paper" (MODEL.md, the FMU) or "exact"
+    filippov: str = "exact"     # the sticking field: "exact" (the FMU's) or "paper" (leading order)
 
     def __post_init__(self):
         if self.filippov not in FILIPPOV:
@@ -485,7 +488,7 @@ class ReferenceOutcome:
     method: str = "Radau"
     rtol: float = math.nan
     modes: tuple = ()   # the modes in order, e.g. ("slip+", "stick", "slip-", "flight")
-    filippov: str = "paper"
+    filippov: str = "exact"
 
     @property
     def w_error(self):
@@ -497,7 +500,7 @@ class ReferenceOutcome:
         return self.phi - self.case.predicted_phi
 
 
-def run_reference(case, method="Radau", rtol=None, *, jac=True, filippov="paper"):
+def run_reference(case, method="Radau", rtol=None, *, jac=True, filippov="exact"):
     """One IWC case (experiment.Case) integrated by solve_ivp, reduced like Experiment.run.
 
     Starts on the floor (y = 0, w = eps w10, v = v0, theta0, phi0) and stops at the
