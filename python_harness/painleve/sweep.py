@@ -193,6 +193,12 @@ def _run_on_dask(spec, batches, blob, interface, store, bar, *, scheduler, worke
             nxt = next(batches, None)
             if nxt is not None:
                 queue.add(submit(nxt))
+    except BaseException:
+        # Interrupted with batches in flight: closing the cluster under them can make a pending
+        # tornado callback fail on a closed connection, logged with a traceback that says nothing
+        # to the user (what was written is kept; the CLI says how to resume).
+        logging.getLogger("tornado.application").setLevel(logging.CRITICAL)
+        raise
     finally:
         try:    # each worker frees its FMU instance and extracted files (workers do not run atexit)
             client.run(_close_experiments)
