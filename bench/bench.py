@@ -183,7 +183,7 @@ def summarize(names, rows, ref, epsilons):
                 runner=name, eps=eps,
                 ms=1e3 * statistics.median(statistics.median(c["seconds"]) for c in cs),
                 nfev=median("nfev"), nsteps=median("nsteps"), nevents=median("nevents"),
-                err_e=max(abs(c["w"] / k.v0 - k.e) for c, k in zip(cs, cases) if k.predicts_iwc),
+                err_e=max(abs(k.w_error(c["w"])) for c, k in zip(cs, cases) if k.predicts_iwc),
                 err_ref=max(abs(c["w"] - r) for c, r in zip(cs, ref[eps]))))
     return table
 

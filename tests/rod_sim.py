@@ -39,3 +39,12 @@ def rod_energy(r, alpha, epsilon):
     kinetic = 0.5 * ((r["v"] + phi * s) ** 2 + (r["w"] + phi * c) ** 2) + 0.5 * phi**2 / alpha
     spring = np.where(y < 0, 0.5 * (y / epsilon) ** 2, 0.0)
     return kinetic + (y + s) + spring
+
+
+def energy_gradient(x, alpha, epsilon):
+    """d rod_energy / d (x, v, y, w, theta, phi) at one state x."""
+    _, v, y, w, th, ph = x
+    s, c = np.sin(th), np.cos(th)
+    Xd, Yd = v + ph * s, w + ph * c
+    return np.array([0.0, Xd, 1 + min(y, 0) / epsilon**2, Yd, Xd * ph * c - Yd * ph * s + c,
+                     Xd * s + Yd * c + ph / alpha])

@@ -8,7 +8,7 @@ import pytest
 
 from me_driver import Rod
 from painleve import analytic as an
-from rod_sim import event_count, mode_changes, phases, rod_energy, simulate
+from rod_sim import energy_gradient, event_count, mode_changes, phases, rod_energy, simulate
 
 
 @pytest.fixture(scope="module")
@@ -154,15 +154,6 @@ def test_energy_never_increases_through_a_stick_without_damping(fmu_path):
     assert np.max(np.diff(E)) <= bound, f"energy rises by {np.max(np.diff(E)):.3g} in one sample"
     assert abs(E[stick[-1]] - E[stick[0]]) <= bound, "no work is done while sticking"
     assert E[-1] < E[0] - 0.1                                # friction takes its share while slipping
-
-
-def energy_gradient(x, alpha, epsilon):
-    """d energy / d (x, v, y, w, theta, phi) of rod_sim.rod_energy (the FMU's energy)."""
-    _, v, y, w, th, ph = x
-    s, c = np.sin(th), np.cos(th)
-    Xd, Yd = v + ph * s, w + ph * c
-    return np.array([0.0, Xd, 1 + min(y, 0) / epsilon**2, Yd, Xd * ph * c - Yd * ph * s + c,
-                     Xd * s + Yd * c + ph / alpha])
 
 
 @pytest.mark.parametrize("delta", [0.0, 1.0])

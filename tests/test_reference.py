@@ -120,18 +120,8 @@ def test_theorem2_both_implementations_put_the_rod_on_the_same_side_of_w1_star(f
 
 # --------------------------------------------------------------------- energy
 def energy(x, alpha, epsilon):
-    """Kinetic + potential + spring energy; centre of mass at (x - cos theta, y + sin theta)."""
-    _, v, y, w, th, ph = x
-    Xd, Yd = v + ph * np.sin(th), w + ph * np.cos(th)
-    return 0.5 * (Xd ** 2 + Yd ** 2) + 0.5 * ph ** 2 / alpha + y + np.sin(th) + 0.5 * (np.minimum(y, 0) / epsilon) ** 2
-
-
-def energy_gradient(x, alpha, epsilon):
-    _, v, y, w, th, ph = x
-    s, c = math.sin(th), math.cos(th)
-    Xd, Yd = v + ph * s, w + ph * c
-    return np.array([0.0, Xd, 1 + min(y, 0) / epsilon ** 2, Yd, Xd * ph * c - Yd * ph * s + c,
-                     Xd * s + Yd * c + ph / alpha])
+    """rod_sim.rod_energy (the FMU's energy) of states x = (x, v, y, w, theta, phi) along axis 0."""
+    return rod_sim.rod_energy(dict(zip(("x", "v", "y", "w", "theta", "phi"), x)), alpha, epsilon)
 
 
 STICK_STATES = [np.array([0.0, 0.0, -3e-7, w, th, ph]) for w in (-2e-3, 0.0, 1e-3)
@@ -147,7 +137,7 @@ def test_energy_rate_is_the_power_of_the_contact_forces(mode):
         if mode in (SLIP_FORWARD, SLIP_BACKWARD):
             x = x.copy()
             x[1] = 0.3 if mode == SLIP_FORWARD else -0.3
-        grad, F = energy_gradient(x, alpha, eps), (-x[2] / eps - delta * x[3]) / eps
+        grad, F = rod_sim.energy_gradient(x, alpha, eps), (-x[2] / eps - delta * x[3]) / eps
         if mode == FLIGHT:     # y < 0 without force (after lift-off): the spring's energy is let go
             power = x[2] * x[3] / eps ** 2
         else:

@@ -92,6 +92,13 @@ class Case:
     def predicted_phi(self):
         return float(an.phi_after_iwc(self.theta0, self.phi0, self.v0, self.delta, **self._params()))
 
+    def w_error(self, w):
+        """w/v0 - e for a return velocity w: o(1) as eps -> 0 (Theorem 1)."""
+        return w / self.v0 - self.e
+
+    def phi_error(self, phi):
+        return phi - self.predicted_phi
+
     @cached_property
     def lambda_plus(self):
         """The unstable eigenvalue of slipping compression (eq lambdapm)."""
@@ -131,12 +138,11 @@ class Outcome:
 
     @property
     def w_error(self):
-        """w/v0 - e: o(1) as eps -> 0 (Theorem 1)."""
-        return self.w / self.case.v0 - self.case.e
+        return self.case.w_error(self.w)
 
     @property
     def phi_error(self):
-        return self.phi - self.case.predicted_phi
+        return self.case.phi_error(self.phi)
 
     @property
     def theta_error(self):

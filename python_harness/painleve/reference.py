@@ -492,12 +492,11 @@ class ReferenceOutcome:
 
     @property
     def w_error(self):
-        """w/v0 - e: o(1) as eps -> 0 (Theorem 1)."""
-        return self.w / self.case.v0 - self.case.e
+        return self.case.w_error(self.w)
 
     @property
     def phi_error(self):
-        return self.phi - self.case.predicted_phi
+        return self.case.phi_error(self.phi)
 
 
 def run_reference(case, method="Radau", rtol=None, *, jac=True, filippov="exact"):
