@@ -1,5 +1,6 @@
-/* Co-Simulation's own integrator: SUNDIALS CVODE (BDF, dense linear solver,
- * the rod's analytic Jacobian, root finding on the rod's event indicators)
+/* Co-Simulation's own integrator: SUNDIALS CVODE (Adams, Newton with a dense
+ * linear solver and the rod's analytic Jacobian, root finding on the rod's
+ * event indicators)
  * over the model of model.h. Knows CVODE and the model, not FMI. */
 #ifndef COSIM_H
 #define COSIM_H
