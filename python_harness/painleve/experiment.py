@@ -6,8 +6,12 @@ loop). A case starts on the floor, y = 0, w = eps * w10 (MODEL.md §3), and
 ends when the rod, having touched the floor, is back at y = 0 moving up.
 
 What it knows of fmpy 0.3.32 and chooses for the user:
-- CVode takes at most 500 steps per output interval; the interval is 5 eps
-  (ME) or eps/2 (CS), so even the stiffest case never reaches that limit.
+- `run` through Model Exchange is a master loop of its own (me_loop) around
+  fmpy's CVode solver: CVode goes from event to event, the phases are read at
+  each event and the run stops at the event that returns the rod to y = 0
+  (exact, no output grid); `simulate` is fmpy's simulate_fmu, the trajectory
+  on a grid (5 eps, or eps/2 through Co-Simulation), events recorded (two
+  rows each, the exact event state). The two agree to the solver tolerance.
 - CVode's absolute tolerance is the relative one times each state's nominal,
   and the FMU reports y ~ eps^2, w ~ eps: one tolerance fits every stiffness.
 - The relative tolerance defaults to min(1e-6, eps/100), through Model
@@ -15,16 +19,14 @@ What it knows of fmpy 0.3.32 and chooses for the user:
   communication points), so the solver's error stays below the theorem's
   O(eps ln 1/eps) and the measured error is the model's, not the
   tolerance's. fmpy would otherwise use the DefaultExperiment's 1e-6.
-- Euler steps once per output interval: both are set to the step.
-- Events are recorded (two rows each, the exact event state), so the return
-  velocity is read at the y = 0 event, with no interpolation.
+- Euler (through simulate_fmu) steps once per output interval: both are set
+  to the step.
 - Through Co-Simulation (interface="CS") the FMU integrates itself with its
-  embedded CVODE and the master sees communication points only (eps/2 apart):
-  the state at the return to y = 0 is then recovered exactly by running the
-  free flight (a closed form) back from the first point after it. `simulate`
-  (fmpy's simulate_fmu, points eps/2 apart) sees durations to eps/2 and no
-  events; `run` (the Co-Simulation fast loop) reads the phases exactly from
-  the FMU's logEvents messages and the state only every 4 eps.
+  embedded CVODE and the master sees communication points only: `run` (the
+  Co-Simulation fast loop) reads the phases exactly from the FMU's logEvents
+  messages, steps 4 eps at a time, and recovers the state at the return to
+  y = 0 exactly by running the free flight (a closed form) back from the
+  first point after it.
 """
 import math
 import re
@@ -35,6 +37,7 @@ import numpy as np
 
 from . import analytic as an
 from .instance import LoadedFMU, SimulationError
+from .me_loop import integrate
 
 STATES = ["v", "y", "w", "theta", "phi"]     # those an Outcome reads
 OUTPUTS = STATES + ["mode", "contact"]
@@ -168,7 +171,8 @@ class Experiment(LoadedFMU):
         self.solver = solver
         self.relative_tolerance = relative_tolerance
         self.steps_per_epsilon = steps_per_epsilon
-        self._vr_yw, self._vr_contact = [self.vr["y"], self.vr["w"]], [self.vr["contact"]]
+        self._vr_yw, self._vr_contact, self._vr_mode = [self.vr["y"], self.vr["w"]], [self.vr["contact"]], [self.vr["mode"]]
+        self.solver_stats = {}   # the last Model Exchange fast loop's dict(nfev, nsteps)
         self._vr_states = [self.vr[k] for k in STATES]
 
     def _back_on_floor(self):
@@ -211,7 +215,43 @@ class Experiment(LoadedFMU):
         """One case, reduced to its Outcome."""
         if self.interface == "CS":
             return self._run_cs(case)
+        if self.solver == "CVode":
+            return self._run_me(case)
         return outcome_of(case, self.simulate(case))
+
+    def _start(self, fmu, case, tolerance):
+        """Set-up, the case's start values, initialization (fmi2ExitInitializationMode done)."""
+        start = case.start_values()
+        fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
+        fmu.setReal([self.vr[k] for k in start], list(start.values()))
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+
+    def _run_me(self, case):
+        """Model Exchange's fast loop: fmpy's CVode from event to event (me_loop), the
+        phases read at each event, the run stopped at the event that returns the rod to y = 0."""
+        case.check()
+        settings = self._solver_settings(case)
+        switches, state = [], {}
+
+        def at_event(t):
+            contact, mode = self.fmu.getBoolean(self._vr_contact)[0], self.fmu.getInteger(self._vr_mode)[0]
+            if not switches or switches[-1][1:] != (contact, mode):
+                switches.append((t, int(contact), int(mode)))
+            if any(c for _, c, _ in switches) and not contact:
+                state.update(zip(STATES, self.fmu.getReal(self._vr_states)))
+                return state["y"] >= 0
+            return False
+
+        with self.fresh_run(case) as fmu:
+            self._start(fmu, case, settings["relative_tolerance"])
+            switches.append((0.0, int(fmu.getBoolean(self._vr_contact)[0]), int(fmu.getInteger(self._vr_mode)[0])))
+            t, self.solver_stats = integrate(fmu, self.model_description, tolerance=settings["relative_tolerance"],
+                                             stop_time=settings["stop_time"], at_event=at_event)
+        if state.get("y", -1) < 0:
+            raise SimulationError(f"{case} did not return to y = 0 within t = {t:.3g} (is eps small enough "
+                                  f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+        return outcome_from_switches(case, switches[1:], t, state)
 
     def _log(self, status, category, message):
         super()._log(status, category, message)
@@ -226,14 +266,10 @@ class Experiment(LoadedFMU):
         case.check()
         settings = self._solver_settings(case)
         h, stop = CHUNK * case.epsilon, settings["stop_time"]
-        start = case.start_values()
         self._switches = []
         with self.fresh_run(case) as fmu:
             fmu.setDebugLogging(True, ["logEvents"])
-            fmu.setupExperiment(tolerance=settings["relative_tolerance"], startTime=0.0)
-            fmu.setReal([self.vr[k] for k in start], list(start.values()))
-            fmu.enterInitializationMode()
-            fmu.exitInitializationMode()
+            self._start(fmu, case, settings["relative_tolerance"])
             t = 0.0
             while t < stop:
                 fmu.doStep(t, h)
