@@ -6,10 +6,11 @@ of running one, side by side in one process run, interleaved.
 
 Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
   fmpy ME simulate_fmu  fmpy.simulate_fmu(CVode) from the .fmu, one call per case
-  fmpy ME fast loop     painleve Experiment: one instance, fmi2Reset between cases
+  fmpy ME fast loop     painleve Experiment: fmpy's CVode from event to event
+                        (painleve.me_loop), one instance, fmi2Reset between cases
   fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
   fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
-  fmpy CS fast loop     painleve Experiment(interface="CS"): fmi2DoStep, eps/2 apart
+  fmpy CS fast loop     painleve Experiment(interface="CS"): fmi2DoStep, 4 eps apart
   scipy <method>        painleve.reference (solve_ivp, the same model in Python)
   native                bench/native: the FMU's .so under CVODE in C, no Python
 
@@ -17,10 +18,12 @@ All run at the harness's tolerance, rtol = min(1e-6, eps/100), atol = rtol *
 nominal (y ~ eps^2, w ~ eps). Wall time per case is the median over repeats;
 the error is against the analytic e (the model's own O(eps ln 1/eps)) and
 against the tightest run (scipy DOP853 at rtol 1e-12, an independent code).
-RHS evaluations are counted where the runner lets us: fmpy's CVode calls the
-FMU's fmi2GetDerivatives from Python (counted by wrapping it), the scipy
-reference and the native driver count their own; fmpy's Co-Simulation hides
-the FMU's CVODE. Peak memory is each runner's process high-water mark (a
+Then the runners with a tolerance run again, each at the loosest rtol that
+brings every case within 1 % of the model's own error of the tightest run:
+the comparison at equal accuracy. RHS evaluations are counted where the
+runner lets us: the ME fast loop, the scipy reference and the native driver
+count their own, fmpy's Euler is counted by wrapping fmi2GetDerivatives;
+fmpy's Co-Simulation hides the FMU's CVODE. Peak memory is each runner's process high-water mark (a
 child process per runner, same cases once).
 """
 import argparse
@@ -34,7 +37,9 @@ import subprocess
 import sys
 import time
 
-import numpy as np
+# The systems are 6x6: BLAS threads would only spin on the other core.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+import numpy as np                                       # noqa: E402
 
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -71,32 +76,48 @@ class Counting:
         fmu.getDerivatives = counted
 
 
+# The runners with a tolerance: those compared at equal accuracy.
+TUNABLE = ["fmpy ME fast loop", "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"]
+
+
 class Runners:
-    """Every runner as name -> f(case) -> dict(w, nfev, nsteps, nevents); instances made once."""
+    """Every runner as name -> f(case, rtol) -> dict(w, nfev, nsteps, nevents); instances made once.
+    rtol None: the harness's, min(1e-6, eps/100)."""
 
     def __init__(self):
         self.me, self.cs = Experiment(str(FMU)), Experiment(str(FMU), interface="CS")
         self.euler = Experiment(str(FMU), solver="Euler")
-        self.me_count, self.euler_count = Counting(self.me.fmu), Counting(self.euler.fmu)
+        self.euler_count = Counting(self.euler.fmu)
 
     def names(self):
         return (["fmpy ME simulate_fmu", "fmpy ME fast loop", "fmpy ME Euler", "fmpy CS simulate_fmu",
                  "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"])
 
-    def run(self, name, case):
+    def run(self, name, case, rtol=None):
         if name.endswith("simulate_fmu"):
             return dict(w=self.simulate_fmu(case, "CS" if " CS " in name else "ME").w)
-        if name in ("fmpy ME fast loop", "fmpy ME Euler"):
-            experiment, counter = (self.me, self.me_count) if "fast" in name else (self.euler, self.euler_count)
-            before = counter.calls
-            o = experiment.run(case)
-            return dict(w=o.w, nfev=counter.calls - before, nevents=o.events)
+        if name == "fmpy ME fast loop":
+            self.me.relative_tolerance = rtol
+            o = self.me.run(case)
+            return dict(w=o.w, nevents=o.events, **self.me.solver_stats)
+        if name == "fmpy ME Euler":
+            before = self.euler_count.calls
+            o = self.euler.run(case)
+            return dict(w=o.w, nfev=self.euler_count.calls - before, nevents=o.events)
         if name == "fmpy CS fast loop":
+            self.cs.relative_tolerance = rtol
             return dict(w=self.cs.run(case).w)
         if name.startswith("scipy "):
-            o = reference.run_reference(case, method=name.split()[1])
+            o = reference.run_reference(case, method=name.split()[1], rtol=rtol)
             return dict(w=o.w, nfev=o.nfev, nsteps=o.nsteps, nevents=o.nevents)
         raise KeyError(name)
+
+    def run_block(self, name, cases, rtol=None):
+        """The cases one after the other: [(seconds, dict)] (the native driver times itself)."""
+        if name == "native":
+            return [(n["wall_seconds"], dict(w=n["w"], nfev=n["nfev"], nsteps=n["nsteps"], nevents=n["nevents"]))
+                    for n in run_native(NATIVE, FMU, cases, rtol=rtol)]
+        return [timed(self.run, name, case, rtol) for case in cases]
 
     def simulate_fmu(self, case, interface):
         """fmpy.simulate_fmu from the .fmu file (unzip, load, run, free), with the harness's settings."""
@@ -117,27 +138,56 @@ def timed(f, *args):
     return time.perf_counter() - t, out
 
 
-def measure(repeats, epsilons):
-    """rows[(runner, eps)] = list over cases of dict(seconds=[...], w, counters)."""
-    runners = Runners()
-    names = runners.names()
+def measure(runners, names, repeats, epsilons, rtols=None):
+    """rows[(runner, eps)] = list over cases of dict(seconds=[...], w, counters).
+    Each repeat runs each runner over each eps's cases as one block, runners in an
+    order rotated every repeat: every runner is timed warm (as the native driver,
+    one process per block, always is) and all share the machine's drift.
+    rtols[(runner, eps)]: the runner's rtol there (absent: the harness's)."""
+    rtols = rtols or {}
     rows = {(n, eps): [dict(seconds=[]) for _ in cases_at(eps)] for n in names for eps in epsilons}
     for rep in range(repeats):
+        order = names[rep % len(names):] + names[:rep % len(names)]
         for eps in epsilons:
             cases = cases_at(eps)
-            native = run_native(NATIVE, FMU, cases)                  # one process, timed per case inside
-            for i, case in enumerate(cases):
-                order = names[:-1][rep % (len(names) - 1):] + names[:-1][:rep % (len(names) - 1)]
-                for name in order:                                   # interleaved, rotated each repeat
-                    seconds, out = timed(runners.run, name, case)
+            for name in order:
+                for i, (seconds, out) in enumerate(runners.run_block(name, cases, rtols.get((name, eps)))):
                     rows[name, eps][i]["seconds"].append(seconds)
                     rows[name, eps][i].update(out)
-                n = native[i]
-                rows["native", eps][i]["seconds"].append(n["wall_seconds"])
-                rows["native", eps][i].update(w=n["w"], nfev=n["nfev"], nsteps=n["nsteps"], nevents=n["nevents"])
         print(f"repeat {rep + 1}/{repeats} done", file=sys.stderr)
-    runners.close()
-    return names, rows
+    return rows
+
+
+# Equal accuracy: each runner at the loosest rtol on this ladder that brings every
+# case's w within TARGET_SHARE of the model's own error (the theorem's o(1)) of the
+# tightest reference: accurate enough that what is measured is the model, no more.
+LADDER = tuple(10 ** (-k / 2) for k in range(6, 23))    # 1e-3 ... 1e-11
+TARGET_SHARE = 0.01
+
+
+def accuracy_targets(ref, epsilons):
+    """target[eps]: TARGET_SHARE of the largest |w/v0 - e| over the IWC cases (tight reference)."""
+    return {eps: TARGET_SHARE * max(abs(c.w_error(w)) for c, w in zip(cases_at(eps), ref[eps]) if c.predicts_iwc)
+            for eps in epsilons}
+
+
+def max_error(runners, name, eps, rtol, ref):
+    """The largest |w - w_ref| over the cases at eps, the runner at rtol."""
+    ws = [out["w"] for _, out in runners.run_block(name, cases_at(eps), rtol)]
+    return max(abs(w - r) for w, r in zip(ws, ref[eps]))
+
+
+def equal_accuracy_rtols(runners, ref, targets, names=TUNABLE):
+    """chosen[(runner, eps)] = (rtol, error): the loosest rung meeting the target (absent if none does)."""
+    chosen = {}
+    for name in names:
+        for eps, target in targets.items():
+            for rtol in LADDER:
+                err = max_error(runners, name, eps, rtol, ref)
+                if err <= target:
+                    chosen[name, eps] = (rtol, err)
+                    break
+    return chosen
 
 
 def tightest(epsilons):
@@ -192,16 +242,20 @@ def fmt(x, spec):
     return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
 
 
-def markdown(table, peaks, names, epsilons, sweep, command, seconds):
+def markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, seconds):
     out = [f"# Benchmarks: cost per IWC case", "",
            f"Command: `{command}` ({seconds:.0f} s). Machine: {platform.node()}, {platform.machine()}, "
            f"{os.cpu_count()} cores, {platform.platform()}, Python {platform.python_version()}, "
            f"load average at start {os.getloadavg()[0]:.2f}.", "",
            "Cases per eps: Theorem 1 at (theta0, delta) = (1, 1), (0.9, 0), (1.1, 0.5) and Theorem 2 "
-           "(the video's rod) at w10 = 1.2 and 0.8 w1*; alpha = mu = 3. rtol = min(1e-6, eps/100) for every "
-           "solver but Euler (h = eps/100). `ms` the median over cases of the median wall time over repeats; "
-           "`nfev`, `steps`, `events` medians over cases; `|w/v0-e|` the largest over the IWC cases (the "
-           "model's O(eps ln 1/eps)); `|w-w_ref|` the largest against scipy DOP853 at rtol 1e-12.", "",
+           "(the video's rod) at w10 = 1.2 and 0.8 w1*; alpha = mu = 3. Each repeat runs each runner over "
+           "each eps's five cases in a row (runners in an order rotated every repeat), so every runner is "
+           "timed warm, as the native driver in its own process is. `ms` the median over cases of the median "
+           "wall time over repeats; `nfev`, `steps`, `events` medians over cases; `|w/v0-e|` the largest over "
+           "the IWC cases (the model's O(eps ln 1/eps)); `|w-w_ref|` the largest against scipy DOP853 at "
+           "rtol 1e-12.", "",
+           "## At the harness's tolerance", "",
+           "rtol = min(1e-6, eps/100) for every solver but Euler (h = eps/100).", "",
            "| runner | eps | ms/case | nfev | steps | events | abs(w/v0-e) | abs(w-w_ref) |",
            "|---|---|---|---|---|---|---|---|"]
     for r in table:
@@ -219,14 +273,29 @@ def markdown(table, peaks, names, epsilons, sweep, command, seconds):
         p_s = growth({e: by[name, e]["nsteps"] for e in epsilons})
         out.append(f"| {name} | {fmt(p_f, '.2f')} | {fmt(p_s, '.2f')} | {by[name, epsilons[0]]['ms']:.3f} -> "
                    f"{by[name, epsilons[-1]]['ms']:.3f} | {peaks.get(name, '–')} |")
-    out += ["", "## Ratios per eps (ms/case)", "",
+    out += ["", "## At equal accuracy", "",
+            f"Each runner at the loosest rtol of 1e-3, 3e-4, ..., 1e-11 whose largest |w - w_ref| over the cases "
+            f"is at most the target, {TARGET_SHARE:g} of the model's own error at that eps (the largest "
+            "|w/v0 - e| of the tight reference): the solver's error is then negligible beside what is "
+            "measured, and no runner is held to more.", "",
+            "| runner | eps | target | rtol | abs(w-w_ref) | ms/case | nfev | steps |", "|---|---|---|---|---|---|---|---|"]
+    eq = {(r["runner"], r["eps"]): r for r in equal}
+    for name in TUNABLE:
+        for eps in epsilons:
+            if (name, eps) not in chosen:
+                out.append(f"| {name} | {eps:.0e} | {targets[eps]:.1e} | not reached at 1e-11 | | | | |")
+                continue
+            r = eq[name, eps]
+            out.append(f"| {name} | {eps:.0e} | {targets[eps]:.1e} | {chosen[name, eps][0]:.0e} | "
+                       f"{r['err_ref']:.1e} | {r['ms']:.3f} | {fmt(r['nfev'], '.0f')} | {fmt(r['nsteps'], '.0f')} |")
+    out += ["", "## Ratios at equal accuracy (ms/case)", "",
             "| eps | fastest scipy | ME fast loop / fastest scipy | fastest scipy / CS fast loop | "
             "CS fast loop / native |", "|---|---|---|---|---|"]
     for eps in epsilons:
-        sci = min((by[f"scipy {m}", eps] for m in SCIPY), key=lambda r: r["ms"])
-        me, cs, nat = by["fmpy ME fast loop", eps]["ms"], by["fmpy CS fast loop", eps]["ms"], by["native", eps]["ms"]
-        out.append(f"| {eps:.0e} | {sci['runner']} {sci['ms']:.3f} | {me / sci['ms']:.2f} | {sci['ms'] / cs:.1f} | "
-                   f"{cs / nat:.2f} |")
+        ms = {name: eq[name, eps]["ms"] if (name, eps) in chosen else math.nan for name in TUNABLE}
+        sci = min((f"scipy {m}" for m in SCIPY), key=lambda n: ms[n] if not math.isnan(ms[n]) else math.inf)
+        me, cs, nat = ms["fmpy ME fast loop"], ms["fmpy CS fast loop"], ms["native"]
+        out.append(f"| {eps:.0e} | {sci} {ms[sci]:.3f} | {me / ms[sci]:.2f} | {ms[sci] / cs:.1f} | {cs / nat:.2f} |")
     if sweep:
         out += ["", "## Sweep on dask", ""] + sweep
     return "\n".join(out) + "\n"
@@ -244,12 +313,20 @@ def main(argv=None):
             sys.exit(f"{path} is missing: {how} builds it")
     start = time.monotonic()
     epsilons = (1e-2, 1e-4) if args.quick else EPSILONS
-    names, rows = measure(2 if args.quick else args.repeats, epsilons)
-    table = summarize(names, rows, tightest(epsilons), epsilons)
+    repeats = 2 if args.quick else args.repeats
+    ref = tightest(epsilons)
+    runners = Runners()
+    names = runners.names()
+    table = summarize(names, measure(runners, names, repeats, epsilons), ref, epsilons)
+    targets = accuracy_targets(ref, epsilons)
+    chosen = equal_accuracy_rtols(runners, ref, targets)
+    rtols = {key: rtol for key, (rtol, _) in chosen.items()}
+    equal = summarize(TUNABLE, measure(runners, TUNABLE, repeats, epsilons, rtols), ref, epsilons)
+    runners.close()
     peaks = {} if args.quick else peak_memory(names, epsilons)
     sweep = [] if args.quick else sweep_rows(args.sweep_cases)
     command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")
-    text = markdown(table, peaks, names, epsilons, sweep, command, time.monotonic() - start)
+    text = markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, time.monotonic() - start)
     print(text)
     if not args.quick:
         pathlib.Path(args.out).parent.mkdir(parents=True, exist_ok=True)

@@ -23,10 +23,9 @@ def runners(fmu_path):
 @pytest.mark.parametrize("eps", [1e-3, 1e-5])
 def test_every_runner_gives_the_same_iwc(runners, eps):
     cases = bench.cases_at(eps)
-    native = bench.run_native(bench.NATIVE, bench.FMU, cases)
+    blocks = {name: runners.run_block(name, cases) for name in runners.names()}
     for i, case in enumerate(cases):
-        ws = {name: runners.run(name, case)["w"] for name in runners.names() if name != "native"}
-        ws["native"] = native[i]["w"]
+        ws = {name: block[i][1]["w"] for name, block in blocks.items()}
         rtol = min(1e-6, eps / 100)
         for name, w in ws.items():
             if name == "fmpy ME Euler":     # first order, h = eps/100: a few % of w (test_second_importer)
@@ -45,3 +44,19 @@ def test_growth_fit_reads_the_exponent_of_ln_one_over_eps():
         counts = {e: 40 * math.log(1 / e) ** p for e in epsilons}
         assert bench.growth(counts) == pytest.approx(p, abs=1e-9)
     assert math.isnan(bench.growth({e: None for e in epsilons}))
+
+
+def test_equal_accuracy_takes_the_loosest_tolerance_that_meets_the_target(runners):
+    eps = 1e-3
+    ref = bench.tightest([eps])
+    target = bench.accuracy_targets(ref, [eps])[eps]
+    # 1 % of the model's own error, which is O(eps ln 1/eps) (Theorem 1)
+    assert 0 < target < 0.03 * eps * math.log(1 / eps)
+    names = ["fmpy ME fast loop", "scipy DOP853"]
+    chosen = bench.equal_accuracy_rtols(runners, ref, {eps: target}, names=names)
+    for name in names:
+        rtol, err = chosen[name, eps]
+        assert err <= target, name
+        looser = bench.LADDER.index(rtol) - 1
+        if looser >= 0:
+            assert bench.max_error(runners, name, eps, bench.LADDER[looser], ref) > target, name
