@@ -8,7 +8,9 @@ the two callbacks calling the FMU's C functions directly; and `integrate` is
 the FMI 2.0 Model Exchange master loop reduced to what an IWC case needs:
 CVode runs from event to event (no output grid), each event gets the full
 event iteration, and the caller decides at each event whether to stop.
-Halves the time of an fmpy fast loop case; the solver is the same.
+Halves the time of an fmpy fast loop case; the solver is the same. It uses
+two internals of fmpy, pinned in requirements.txt: FMU2Model._functions (the
+FMU's C functions, typed) and the serial N_Vector's content struct.
 """
 from ctypes import POINTER, byref, c_int, c_long, c_void_p
 
