@@ -94,10 +94,10 @@ class Runners:
                  "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"])
 
     def run(self, name, case, rtol=None):
+        self.me.relative_tolerance = self.cs.relative_tolerance = rtol    # simulate_fmu's settings too
         if name.endswith("simulate_fmu"):
             return dict(w=self.simulate_fmu(case, "CS" if " CS " in name else "ME").w)
         if name == "fmpy ME fast loop":
-            self.me.relative_tolerance = rtol
             o = self.me.run(case)
             return dict(w=o.w, nevents=o.events, **self.me.solver_stats)
         if name == "fmpy ME Euler":
@@ -105,7 +105,6 @@ class Runners:
             o = self.euler.run(case)
             return dict(w=o.w, nfev=self.euler_count.calls - before, nevents=o.events)
         if name == "fmpy CS fast loop":
-            self.cs.relative_tolerance = rtol
             return dict(w=self.cs.run(case).w)
         if name.startswith("scipy "):
             o = reference.run_reference(case, method=name.split()[1], rtol=rtol)
