@@ -73,7 +73,8 @@ class LoadedFMU:
     @contextlib.contextmanager
     def fresh_run(self, what):
         """The instance reset for a new run (after the first); a failure inside raises
-        SimulationError naming `what` and quoting the FMU's last error message."""
+        SimulationError naming `what` and quoting the FMU's first error message (the
+        cause: after it the instance is in its Error state and refuses what follows)."""
         if self._used:
             self.fmu.reset()
         self._used = True
@@ -81,7 +82,7 @@ class LoadedFMU:
         try:
             yield self.fmu
         except Exception as err:
-            said = self._errors[-1] if self._errors else str(err)
+            said = self._errors[0] if self._errors else str(err)
             raise SimulationError(f"{what}: the FMU stopped: {said}") from err
 
     def simulate(self, what, **kwargs):
