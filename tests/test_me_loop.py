@@ -55,12 +55,7 @@ def test_a_call_the_fmu_refuses_fails_the_step_not_silently(fmu_path):
                 fmu.setupExperiment(tolerance=1e-6, startTime=0.0)
                 fmu.enterInitializationMode()
                 fmu.exitInitializationMode()
-                md = loaded.model_description
-                solver = DirectCVode(fmu, nx=md.numberOfContinuousStates, nz=md.numberOfEventIndicators,
-                                     get_x=fmu.getContinuousStates, set_x=lambda *a: None,
-                                     get_dx=fmu.getDerivatives, get_z=fmu.getEventIndicators,
-                                     get_nominals=fmu.getNominalsOfContinuousStates, set_time=fmu.setTime,
-                                     input=None, startTime=0.0, relativeTolerance=1e-6)
+                solver = DirectCVode(fmu, loaded.model_description, tolerance=1e-6, max_step=1e-3)
                 solver.step(0.0, 1e-3)
     finally:
         loaded.close()

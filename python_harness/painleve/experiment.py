@@ -227,6 +227,9 @@ class Experiment(LoadedFMU):
         fmu.enterInitializationMode()
         fmu.exitInitializationMode()
 
+    def _contact_mode(self):
+        return int(self.fmu.getBoolean(self._vr_contact)[0]), int(self.fmu.getInteger(self._vr_mode)[0])
+
     def _run_me(self, case):
         """Model Exchange's fast loop: fmpy's CVode from event to event (me_loop), the
         phases read at each event, the run stopped at the event that returns the rod to y = 0."""
@@ -235,9 +238,9 @@ class Experiment(LoadedFMU):
         switches, state = [], {}
 
         def at_event(t):
-            contact, mode = self.fmu.getBoolean(self._vr_contact)[0], self.fmu.getInteger(self._vr_mode)[0]
-            if not switches or switches[-1][1:] != (contact, mode):
-                switches.append((t, int(contact), int(mode)))
+            contact, mode = self._contact_mode()
+            if switches[-1][1:] != (contact, mode):
+                switches.append((t, contact, mode))
             if any(c for _, c, _ in switches) and not contact:
                 state.update(zip(STATES, self.fmu.getReal(self._vr_states)))
                 return state["y"] >= 0
@@ -245,12 +248,11 @@ class Experiment(LoadedFMU):
 
         with self.fresh_run(case) as fmu:
             self._start(fmu, case, settings["relative_tolerance"])
-            switches.append((0.0, int(fmu.getBoolean(self._vr_contact)[0]), int(fmu.getInteger(self._vr_mode)[0])))
+            switches.append((0.0, *self._contact_mode()))     # the start: a reference, not a switch
             t, self.solver_stats = integrate(fmu, self.model_description, tolerance=settings["relative_tolerance"],
                                              stop_time=settings["stop_time"], at_event=at_event)
         if state.get("y", -1) < 0:
-            raise SimulationError(f"{case} did not return to y = 0 within t = {t:.3g} (is eps small enough "
-                                  f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+            raise no_return(case, t)
         return outcome_from_switches(case, switches[1:], t, state)
 
     def _log(self, status, category, message):
@@ -278,8 +280,7 @@ class Experiment(LoadedFMU):
                 if left and (state := dict(zip(STATES, fmu.getReal(self._vr_states))))["y"] >= 0:
                     break
             else:
-                raise SimulationError(f"{case} did not return to y = 0 within t = {stop:.3g} (is eps small enough "
-                                      f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+                raise no_return(case, stop)
         s, back = flight_back_to_floor(state) if state["y"] > 0 else (0.0, state)
         return outcome_from_switches(case, [(float(m["t"]), int(m["contact_to"]), int(m["mode_to"]))
                                             for m in self._switches], t + s, back)
@@ -305,6 +306,11 @@ def outcome_from_switches(case, switches, t_return, back):
                    phi=float(back["phi"]), v=float(back["v"]), t_return=float(t_return),
                    compression=float(compression), stick=float(stick), lift_off=float(lift_off),
                    events=len([t for t, *_ in switches if t <= t_return]))
+
+
+def no_return(case, t):
+    return SimulationError(f"{case} did not return to y = 0 within t = {t:.3g} (is eps small enough "
+                           f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
 
 
 def _first(mask, start=0):
@@ -343,8 +349,7 @@ def outcome_of(case, r, exact_events=True):
     touch = _first(contact)
     end = None if touch is None else _first(~contact & (r["y"] >= 0), touch)
     if end is None:
-        raise SimulationError(f"{case} did not return to y = 0 within t = {t[-1]:.3g} (is eps small enough "
-                              f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+        raise no_return(case, t[-1])
     stick_start = _first(contact[:end] & (mode[:end] == 0), touch)    # a stick after the return is not this IWC's
     nan = math.nan
     if stick_start is None:

@@ -27,14 +27,20 @@ def _data(vector):
     return _N_VectorContent_Serial.from_address(vector.contents.content).data
 
 
+class _NoInput:
+    def apply(self, t):
+        pass
+
+
 class DirectCVode(CVodeSolver):
     """fmpy's CVodeSolver calling fmi2SetTime, fmi2SetContinuousStates,
     fmi2GetDerivatives and fmi2GetEventIndicators directly. A status other than
     fmi2OK fails the step (CVode then reports it, and the FMU has logged why)
     where fmpy's wrappers would raise inside a ctypes callback, which is ignored.
-    Counts right-hand sides (Jacobian columns included) and steps."""
+    Counts right-hand sides (Jacobian columns included) and steps. Starts at t = 0
+    from the instance's states (it must be in continuous-time mode)."""
 
-    def __init__(self, fmu, **solver_args):
+    def __init__(self, fmu, model_description, *, tolerance, max_step):
         functions = fmu._functions
         self._component = fmu.component
         self._set_time = functions["fmi2SetTime"]
@@ -42,7 +48,11 @@ class DirectCVode(CVodeSolver):
         self._get_derivatives = functions["fmi2GetDerivatives"]
         self._get_indicators = functions["fmi2GetEventIndicators"]
         self.nfev, self._steps_before = 0, 0
-        super().__init__(**solver_args)
+        super().__init__(nx=model_description.numberOfContinuousStates, nz=model_description.numberOfEventIndicators,
+                         get_x=fmu.getContinuousStates, set_x=fmu.setContinuousStates, get_dx=fmu.getDerivatives,
+                         get_z=fmu.getEventIndicators, get_nominals=fmu.getNominalsOfContinuousStates,
+                         set_time=fmu.setTime, input=_NoInput(), startTime=0.0, maxStep=max_step,
+                         relativeTolerance=tolerance, maxNumSteps=100_000)
 
     def f(self, t, y, ydot, user_data):
         self.nfev += 1
@@ -69,11 +79,6 @@ class DirectCVode(CVodeSolver):
         super().reset(time)
 
 
-class _NoInput:
-    def apply(self, t):
-        pass
-
-
 def event_iteration(fmu):
     """fmi2NewDiscreteStates until the FMU needs no more; its last fmi2EventInfo
     as fmpy returns it: (needed, terminate, nominals changed, values changed,
@@ -95,13 +100,7 @@ def integrate(fmu, model_description, *, tolerance, stop_time, at_event):
     me = model_description.modelExchange
     info = event_iteration(fmu)
     fmu.enterContinuousTimeMode()
-    solver = DirectCVode(fmu, nx=model_description.numberOfContinuousStates,
-                         nz=model_description.numberOfEventIndicators,
-                         get_x=fmu.getContinuousStates, set_x=fmu.setContinuousStates,
-                         get_dx=fmu.getDerivatives, get_z=fmu.getEventIndicators,
-                         get_nominals=fmu.getNominalsOfContinuousStates, set_time=fmu.setTime,
-                         input=_NoInput(), startTime=0.0, maxStep=stop_time / 50,    # fmpy's choice
-                         relativeTolerance=tolerance, maxNumSteps=100_000)
+    solver = DirectCVode(fmu, model_description, tolerance=tolerance, max_step=stop_time / 50)   # fmpy's max step
     t = 0.0
     while not info[1] and t < stop_time:
         t_next = min(stop_time, info[5]) if info[4] else stop_time
