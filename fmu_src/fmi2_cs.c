@@ -1,6 +1,7 @@
-/* FMI 2.0 Co-Simulation: fmi2DoStep integrates the same model and the same
- * event iteration as Model Exchange with the embedded CVODE of cosim.c.
- * Built without SUNDIALS (no HAVE_CVODE), every step says so and fails. */
+/* FMI 2.0 Co-Simulation: fmi2DoStep integrates the model with the embedded
+ * CVODE of cosim.c and runs the same event update as Model Exchange at every
+ * event inside a step. Built without SUNDIALS (no HAVE_CVODE), every step
+ * says so and fails. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,35 +15,22 @@
 /* Communication points closer than this (relative) are the same point. */
 #define SAME_TIME 1e-12
 
-void cs_free(Instance *in)
-{
 #ifdef HAVE_CVODE
-    cosim_free(in->cosim);
-#endif
-    in->cosim = NULL;
-}
-
-#ifdef HAVE_CVODE
-/* The default tolerance keeps the solver's error well below the model's own
- * O(eps ln 1/eps): measured, eps/1000 does with a restart at every
- * communication point (Model Exchange under fmpy needs eps/100); it is kept
- * for masters that restore FMU states often (each restore restarts). */
-static double tolerance_of(const Instance *in)
+static void free_solver(void *solver)
 {
-    const double eps = in->model.params.epsilon;
-    return in->tolerance > 0 ? in->tolerance : fmin(1e-6, eps / 1000);
+    cosim_free(solver);
 }
 
 static fmi2Status restart(Instance *in, const char *call)
 {
     char err[512];
-    REQUIRE(call, cosim_start(in->cosim, &in->model, in->time, tolerance_of(in), err, sizeof err), "%s", err);
-    mark_restart(in);
+    REQUIRE(call, cosim_start(in->solver, &in->model, in->time, in->tolerance, err, sizeof err), "%s", err);
+    model_begin_integration(&in->model);
     return fmi2OK;
 }
 
 /* Integrates to t_end; events on the way are located by CVODE and handled
- * by the same event iteration as Model Exchange, unseen by the master.
+ * by the same event update as Model Exchange, unseen by the master.
  * CVODE continues from one step to the next (its history is the trajectory's:
  * a communication point costs no restart) and restarts after events and
  * wherever the trajectory may have been replaced: initialization, reset,
@@ -50,19 +38,23 @@ static fmi2Status restart(Instance *in, const char *call)
 static fmi2Status integrate(Instance *in, double t_end)
 {
     static const char call[] = "fmi2DoStep";
-    if (!in->cosim) in->cosim = cosim_new();
-    REQUIRE(call, in->cosim, "out of memory for the integrator");
+    if (!in->solver) {
+        in->solver = cosim_new();
+        in->free_solver = free_solver;
+    }
+    REQUIRE(call, in->solver, "out of memory for the integrator");
     if (!in->solver_live && restart(in, call) != fmi2OK) return fmi2Error;
     in->solver_live = true;
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
     while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
         char err[512];
-        const CoSimResult r = cosim_advance(in->cosim, &in->model, &in->time, t_end, err, sizeof err);
+        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, err, sizeof err);
+        if (r == COSIM_FAILED) in->solver_live = false;
         REQUIRE(call, r != COSIM_FAILED, "%s", err);
         if (r == COSIM_REACHED) break;
         bool changed;
         in->solver_live = false;
-        if (handle_event(in, call, &changed) != fmi2OK) return fmi2Error;
+        if (instance_event_update(in, call, &changed) != fmi2OK) return fmi2Error;
         if (restart(in, call) != fmi2OK) return fmi2Error;
         in->solver_live = true;
     }
@@ -85,15 +77,16 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSet
     in->last_successful_time = in->time;
     return fmi2OK;
 #else
-    return fail(in, call, "this binary was built without SUNDIALS CVODE: Co-Simulation is not available "
-                          "(rebuild with libsundials-dev installed, or use Model Exchange)");
+    return instance_fail(in, call, "this binary was built without SUNDIALS CVODE: Co-Simulation is not available "
+                                   "(rebuild with libsundials-dev installed, or use Model Exchange)");
 #endif
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)
 {
     BEGIN("fmi2CancelStep", StepComplete);
-    return fail(in, "fmi2CancelStep", "steps are never asynchronous (canRunAsynchronuously is false)");
+    INTERFACE("fmi2CancelStep", fmi2CoSimulation, "Co-Simulation");
+    return instance_fail(in, "fmi2CancelStep", "steps are never asynchronous (canRunAsynchronuously is false)");
 }
 
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -101,7 +94,8 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
 {
     (void)vr, (void)order, (void)value;
     BEGIN("fmi2SetRealInputDerivatives", BEFORE_INIT_ENDS | StepComplete);
-    REQUIRE("fmi2SetRealInputDerivatives", nvr == 0, "PainleveRod has no inputs");
+    INTERFACE("fmi2SetRealInputDerivatives", fmi2CoSimulation, "Co-Simulation");
+    REQUIRE("fmi2SetRealInputDerivatives", nvr == 0, "%s has no inputs (canInterpolateInputs is false)", MODEL_NAME);
     return fmi2OK;
 }
 
@@ -110,48 +104,55 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 {
     (void)vr, (void)order, (void)value;
     BEGIN("fmi2GetRealOutputDerivatives", StepComplete | Terminated | Error);
-    REQUIRE("fmi2GetRealOutputDerivatives", nvr == 0, "output derivatives are not provided (maxOutputDerivativeOrder = 0)");
+    INTERFACE("fmi2GetRealOutputDerivatives", fmi2CoSimulation, "Co-Simulation");
+    REQUIRE("fmi2GetRealOutputDerivatives", nvr == 0,
+            "output derivatives are not provided (maxOutputDerivativeOrder = 0)");
     return fmi2OK;
 }
 
-static const char *const STATUS_STATES = "StepComplete, Terminated, Error";
+/* Status queries (FMI 2.0.4 §4.2.3): steps are synchronous, so a status that
+ * exists only for asynchronous steps is a legal question with no answer. */
+#define STATUS_STATES (StepComplete | Terminated | Error)
+#define STATUS_BEGIN(call)                                                 \
+    BEGIN(call, STATUS_STATES);                                            \
+    INTERFACE(call, fmi2CoSimulation, "Co-Simulation");                    \
+    REQUIRE(call, value, "value is NULL")
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {
-    (void)s, (void)value;
-    BEGIN("fmi2GetStatus", StepComplete | Terminated | Error);
-    return fail(in, "fmi2GetStatus", "no step is pending (steps are synchronous); status kinds available: "
-                "fmi2LastSuccessfulTime (Real), fmi2Terminated (Boolean) in %s", STATUS_STATES);
+    STATUS_BEGIN("fmi2GetStatus");
+    return instance_discard(in, "fmi2GetStatus", "status kind %d: no step is pending (steps are synchronous)", (int)s);
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
 {
-    BEGIN("fmi2GetRealStatus", StepComplete | Terminated | Error);
-    REQUIRE("fmi2GetRealStatus", value, "value is NULL");
-    REQUIRE("fmi2GetRealStatus", s == fmi2LastSuccessfulTime, "only fmi2LastSuccessfulTime is a Real status");
+    STATUS_BEGIN("fmi2GetRealStatus");
+    if (s != fmi2LastSuccessfulTime)
+        return instance_discard(in, "fmi2GetRealStatus", "status kind %d: only fmi2LastSuccessfulTime is a Real status",
+                                (int)s);
     *value = in->last_successful_time;
     return fmi2OK;
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)
 {
-    (void)s, (void)value;
-    BEGIN("fmi2GetIntegerStatus", StepComplete | Terminated | Error);
-    return fail(in, "fmi2GetIntegerStatus", "there is no Integer status");
+    STATUS_BEGIN("fmi2GetIntegerStatus");
+    return instance_discard(in, "fmi2GetIntegerStatus", "status kind %d: there is no Integer status", (int)s);
 }
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
 {
-    BEGIN("fmi2GetBooleanStatus", StepComplete | Terminated | Error);
-    REQUIRE("fmi2GetBooleanStatus", value, "value is NULL");
-    REQUIRE("fmi2GetBooleanStatus", s == fmi2Terminated, "only fmi2Terminated is a Boolean status");
+    STATUS_BEGIN("fmi2GetBooleanStatus");
+    if (s != fmi2Terminated)
+        return instance_discard(in, "fmi2GetBooleanStatus", "status kind %d: only fmi2Terminated is a Boolean status",
+                                (int)s);
     *value = fmi2False; /* the rod never asks to end a simulation */
     return fmi2OK;
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value)
 {
-    (void)s, (void)value;
-    BEGIN("fmi2GetStringStatus", StepComplete | Terminated | Error);
-    return fail(in, "fmi2GetStringStatus", "there is no String status");
+    STATUS_BEGIN("fmi2GetStringStatus");
+    return instance_discard(in, "fmi2GetStringStatus", "status kind %d: no step is pending (steps are synchronous)",
+                            (int)s);
 }

@@ -1,4 +1,5 @@
-/* What the FMI 2.0 files share: the instance, its states, the call guards. */
+/* What the FMI 2.0 files share: the instance, its states, the call guards.
+ * The model is reached only through model.h. */
 #ifndef FMI2_INSTANCE_H
 #define FMI2_INSTANCE_H
 
@@ -6,6 +7,14 @@
 
 #include "fmi2Functions.h"
 #include "model.h"
+
+/* The standard's fmi2Functions.h prefixes the fmi2 names with
+ * FMI2_FUNCTION_PREFIX; fmpy's copy, which the build uses, was changed to add
+ * none. Either way the exported names get the prefix, as our own do. */
+#ifdef FMI2_FUNCTION_PREFIX
+#undef fmi2FullName
+#define fmi2FullName(name) NAMESPACED(name)
+#endif
 
 typedef enum {
     Instantiated = 1 << 0,
@@ -17,7 +26,7 @@ typedef enum {
     Error = 1 << 6,
 } InstanceState;
 
-/* States each call is allowed in (FMI 2.0 §3.2.3 and §4.2.4). */
+/* States each call is allowed in (FMI 2.0.4 §3.2.3 and §4.2.4). */
 #define ANY_BUT_FATAL (Instantiated | InitializationMode | EventMode | ContinuousTimeMode | StepComplete | Terminated | Error)
 #define READABLE (InitializationMode | EventMode | ContinuousTimeMode | StepComplete | Terminated | Error)
 #define BEFORE_INIT_ENDS (Instantiated | InitializationMode)
@@ -33,44 +42,38 @@ typedef struct {
     bool log_on[N_LOG_CATEGORIES];
     double time;
     Model model;
-    double z_at_restart[ROD_NZ]; /* indicators when integration last (re)started */
-    bool initial_event;          /* the event iteration right after initialization */
-    double window_start;         /* of the current run of events without progress */
-    int events_in_window;
-    double tolerance;            /* from fmi2SetupExperiment; 0: the default */
-    void *cosim;                 /* Co-Simulation's integrator (cosim.h), made on first use */
-    bool solver_live;            /* CVODE holds this trajectory at `time`: the next step continues it */
+    double tolerance;               /* fmi2SetupExperiment's, else the DefaultExperiment's */
+    void *solver;                   /* Co-Simulation's integrator, made on the first step */
+    void (*free_solver)(void *);
+    bool solver_live;               /* the solver holds this trajectory at `time`: a step continues it */
     double last_successful_time;
 } Instance;
 
-const char *state_name(InstanceState s);
-void log_event(Instance *in, const char *fmt, ...);
+const char *instance_state_name(InstanceState s);
+void instance_log_event(Instance *in, const char *fmt, ...);
 
 /* Logs "call: reason", enters the Error state, returns fmi2Error. */
-fmi2Status fail(Instance *in, const char *call, const char *fmt, ...);
+fmi2Status instance_fail(Instance *in, const char *call, const char *fmt, ...);
 
-/* The model with derived values current (initial mode during initialization). */
-Model *current(Instance *in);
+/* Logs "call: reason" as a warning and returns fmi2Discard: a legal call the
+ * FMU cannot answer; the instance stays as it was. */
+fmi2Status instance_discard(Instance *in, const char *call, const char *fmt, ...);
 
-/* The event iteration of MODEL.md §2 at the instance's time: new modes, states
- * moved off switching surfaces, the Zeno guard, the event log. */
-fmi2Status handle_event(Instance *in, const char *call, bool *states_changed);
+/* The model with the initial mode decided while initializing. */
+Model *instance_model(Instance *in);
 
-/* Records the indicators at which integration (re)starts, for the event log. */
-void mark_restart(Instance *in);
-
-/* Co-Simulation's share of the instance's life (fmi2_cs.c). */
-void cs_free(Instance *in);
+/* The event update at the instance's time, logged; fmi2Error on failure. */
+fmi2Status instance_event_update(Instance *in, const char *call, bool *states_changed);
 
 /* NULL-safe instance check: a call on a NULL instance cannot log anything. */
 #define BEGIN(call, allowed)                                                              \
     Instance *in = (Instance *)c;                                                         \
     if (!in) return fmi2Error;                                                            \
     if (!(in->state & (allowed)))                                                         \
-        return fail(in, call, "not allowed in state %s", state_name(in->state))
+        return instance_fail(in, call, "not allowed in state %s", instance_state_name(in->state))
 
 #define REQUIRE(call, cond, ...) \
-    if (!(cond)) return fail(in, call, __VA_ARGS__)
+    if (!(cond)) return instance_fail(in, call, __VA_ARGS__)
 
 /* For the calls of one interface only. */
 #define INTERFACE(call, t, what) \

@@ -1,13 +1,15 @@
 /* FMI 2.0 FMU state: get, set, free, serialize, deserialize.
  *
- * A state is a Snapshot, a plain struct with no pointers. Co-Simulation
- * restarts CVODE wherever a state is taken or restored, so the snapshot
- * holds everything either interface needs to continue identically.
+ * A state is a Snapshot: the instance's own fields and a copy of the model
+ * (plain data, no pointers). Co-Simulation restarts CVODE wherever a state is
+ * taken or restored, so the snapshot holds everything either interface needs
+ * to continue identically.
  *
  * Serialized form (little endian), self-describing and versioned:
  *   "PRODSTAT" | u32 version | u32 guid length | guid | u32 field count |
- *   fields: u8 name length, name, u8 type ('d' double, 'i' int32), value |
- *   u32 FNV-1a checksum of everything before it.
+ *   fields: u8 name length, name, u8 type ('d' double, 'i' int32, 'b' bool as
+ *   int32 0 or 1), value | u32 FNV-1a checksum of everything before it.
+ * The fields are the instance's, then the model's (model.h, model_fields).
  * Deserializing checks every part and names what is wrong. */
 #include <math.h>
 #include <stddef.h>
@@ -15,65 +17,54 @@
 #include <string.h>
 
 #include "fmi2_instance.h"
-#include "model_guid.h"
+#include "model_description.h"
 
 #define MAGIC "PRODSTAT"
-#define FORMAT_VERSION 1u
+#define FORMAT_VERSION 2u
 
 typedef struct {
-    double time, params[4], x[ROD_NX], z_at_restart[ROD_NZ];
-    double window_start, tolerance, last_successful_time;
-    int32_t type, state, contact, slip, initial_event, events_in_window;
+    double time, tolerance, last_successful_time;
+    int type, state;
+    Model model;
 } Snapshot;
 
-/* The fields in serialized order: name, offset, type. */
-typedef struct {
-    const char *name;
-    size_t offset;
-    char type;
-} Field;
-
-#define D(name, member) { name, offsetof(Snapshot, member), 'd' }
-#define I(name, member) { name, offsetof(Snapshot, member), 'i' }
-static const Field FIELDS[] = {
-    D("time", time), D("alpha", params[0]), D("mu", params[1]), D("delta", params[2]), D("epsilon", params[3]),
-    D("x", x[0]), D("v", x[1]), D("y", x[2]), D("w", x[3]), D("theta", x[4]), D("phi", x[5]),
-    D("z0", z_at_restart[0]), D("z1", z_at_restart[1]), D("z2", z_at_restart[2]), D("z3", z_at_restart[3]),
-    D("window_start", window_start), D("tolerance", tolerance), D("last_successful_time", last_successful_time),
-    I("interface", type), I("instance_state", state), I("contact", contact), I("mode", slip),
-    I("initial_event", initial_event), I("events_in_window", events_in_window),
+static const ModelField INSTANCE_FIELDS[] = {
+    { "time", offsetof(Snapshot, time), TYPE_REAL },
+    { "tolerance", offsetof(Snapshot, tolerance), TYPE_REAL },
+    { "last_successful_time", offsetof(Snapshot, last_successful_time), TYPE_REAL },
+    { "interface", offsetof(Snapshot, type), TYPE_INTEGER },
+    { "instance_state", offsetof(Snapshot, state), TYPE_INTEGER },
 };
-#define N_FIELDS (sizeof FIELDS / sizeof FIELDS[0])
+#define N_INSTANCE_FIELDS (sizeof INSTANCE_FIELDS / sizeof INSTANCE_FIELDS[0])
+#define N_FIELDS (N_INSTANCE_FIELDS + model_n_fields)
+
+/* Field i of a snapshot, its offset counted from the snapshot's start. */
+static ModelField field(size_t i)
+{
+    if (i < N_INSTANCE_FIELDS) return INSTANCE_FIELDS[i];
+    ModelField f = model_fields[i - N_INSTANCE_FIELDS];
+    f.offset += offsetof(Snapshot, model);
+    return f;
+}
+
+static const char TYPE_CODE[] = { [TYPE_REAL] = 'd', [TYPE_INTEGER] = 'i', [TYPE_BOOLEAN] = 'b' };
 
 static Snapshot take(const Instance *in)
 {
-    const Model *m = &in->model;
-    Snapshot s = { .time = in->time, .window_start = in->window_start, .tolerance = in->tolerance,
-                   .last_successful_time = in->last_successful_time, .type = (int32_t)in->type,
-                   .state = (int32_t)in->state, .contact = m->mode.contact, .slip = m->mode.slip,
-                   .initial_event = in->initial_event, .events_in_window = in->events_in_window };
-    const double p[4] = { m->params.alpha, m->params.mu, m->params.delta, m->params.epsilon };
-    memcpy(s.params, p, sizeof p);
-    memcpy(s.x, m->x, sizeof s.x);
-    memcpy(s.z_at_restart, in->z_at_restart, sizeof s.z_at_restart);
-    return s;
+    return (Snapshot){ .time = in->time, .tolerance = in->tolerance, .last_successful_time = in->last_successful_time,
+                       .type = (int)in->type, .state = (int)in->state, .model = in->model };
 }
 
 static void restore(Instance *in, const Snapshot *s)
 {
-    Model *m = &in->model;
     in->time = s->time;
-    m->params = (RodParams){ s->params[0], s->params[1], s->params[2], s->params[3] };
-    memcpy(m->x, s->x, sizeof m->x);
-    m->mode = (RodMode){ s->contact != 0, (int)s->slip };
-    m->stale = true;
-    memcpy(in->z_at_restart, s->z_at_restart, sizeof in->z_at_restart);
-    in->window_start = s->window_start;
     in->tolerance = s->tolerance;
     in->last_successful_time = s->last_successful_time;
-    in->initial_event = s->initial_event != 0;
-    in->events_in_window = (int)s->events_in_window;
     in->state = (InstanceState)s->state;
+    in->model = s->model;
+    in->model.stale = true;
+    /* Co-Simulation restarts CVODE from the restored state. */
+    in->solver_live = false;
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
@@ -95,10 +86,8 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
     BEGIN("fmi2SetFMUstate", ANY_BUT_FATAL);
     REQUIRE("fmi2SetFMUstate", state, "FMUstate is NULL");
     const Snapshot *s = state;
-    REQUIRE("fmi2SetFMUstate", s->type == (int32_t)in->type,
-            "the state was taken from an instance of the other interface");
+    REQUIRE("fmi2SetFMUstate", s->type == (int)in->type, "the state was taken from an instance of the other interface");
     restore(in, s);
-    in->solver_live = false;
     return fmi2OK;
 }
 
@@ -154,19 +143,24 @@ static size_t write_state(const Snapshot *s, unsigned char *out)
     put(&k, MODEL_GUID, strlen(MODEL_GUID));
     put_u32(&k, (uint32_t)N_FIELDS);
     for (size_t i = 0; i < N_FIELDS; ++i) {
-        const unsigned char len = (unsigned char)strlen(FIELDS[i].name), type = (unsigned char)FIELDS[i].type;
+        const ModelField f = field(i);
+        const unsigned char len = (unsigned char)strlen(f.name), type = (unsigned char)TYPE_CODE[f.type];
         put(&k, &len, 1);
-        put(&k, FIELDS[i].name, len);
+        put(&k, f.name, len);
         put(&k, &type, 1);
-        const char *at = (const char *)s + FIELDS[i].offset;
-        if (type == 'd') {
+        const char *at = (const char *)s + f.offset;
+        if (f.type == TYPE_REAL) {
             uint64_t bits;
             memcpy(&bits, at, 8);
             put_u64(&k, bits);
+        } else if (f.type == TYPE_INTEGER) {
+            int v;
+            memcpy(&v, at, sizeof v);
+            put_u32(&k, (uint32_t)(int32_t)v);
         } else {
-            int32_t v;
-            memcpy(&v, at, 4);
-            put_u32(&k, (uint32_t)v);
+            bool b;
+            memcpy(&b, at, sizeof b);
+            put_u32(&k, b ? 1u : 0u);
         }
     }
     if (out) put_u32(&k, fnv1a(out, k.at));
@@ -208,39 +202,39 @@ static bool take_u32(Cursor *k, uint32_t *v)
     return true;
 }
 
-/* Reads one field into s; NULL on success, else what is wrong. */
-static const char *read_field(Cursor *k, const Field *f, Snapshot *s)
+/* Reads field f into s; NULL on success, else what is wrong. */
+static const char *read_field(Cursor *k, const ModelField *f, Snapshot *s)
 {
     unsigned char len, type;
     char name[256];
     if (!take_bytes(k, &len, 1) || !take_bytes(k, name, len) || !take_bytes(k, &type, 1)) return "truncated";
     name[len] = '\0';
-    if (strcmp(name, f->name) != 0 || type != (unsigned char)f->type) return "unexpected field";
+    if (strcmp(name, f->name) != 0 || type != (unsigned char)TYPE_CODE[f->type]) return "unexpected field";
     uint32_t lo, hi = 0;
-    if (!take_u32(k, &lo) || (type == 'd' && !take_u32(k, &hi))) return "truncated";
+    if (!take_u32(k, &lo) || (f->type == TYPE_REAL && !take_u32(k, &hi))) return "truncated";
     char *at = (char *)s + f->offset;
-    if (type == 'd') {
+    if (f->type == TYPE_REAL) {
         const uint64_t bits = (uint64_t)hi << 32 | lo;
         memcpy(at, &bits, 8);
+    } else if (f->type == TYPE_INTEGER) {
+        const int v = (int32_t)lo;
+        memcpy(at, &v, sizeof v);
     } else {
-        const int32_t v = (int32_t)lo;
-        memcpy(at, &v, 4);
+        if (lo > 1) return "a Boolean that is neither 0 nor 1";
+        const bool b = lo == 1;
+        memcpy(at, &b, sizeof b);
     }
     return NULL;
 }
 
-/* Values a state of this model can hold; NULL if all are. */
+/* Values a state of this instance can hold; NULL if all are. */
 static const char *implausible(const Snapshot *s)
 {
-    for (unsigned int i = 0; i < 4; ++i)
-        if (model_check_real(VR_ALPHA + i, s->params[i])) return model_real_info(VR_ALPHA + i)->name;
-    for (unsigned int i = 0; i < ROD_NX; ++i)
-        if (model_check_real(VR_X + i, s->x[i])) return model_real_info(VR_X + i)->name;
     if (!isfinite(s->time)) return "time";
+    if (!isfinite(s->tolerance) || s->tolerance <= 0) return "tolerance";
     if (s->type != fmi2ModelExchange && s->type != fmi2CoSimulation) return "interface";
-    if (s->slip < -1 || s->slip > 1 || (s->contact != 0 && s->contact != 1)) return "mode";
     if (s->state <= 0 || s->state > Error || (s->state & (s->state - 1))) return "instance_state";
-    return NULL;
+    return model_implausible(&s->model);
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size, fmi2FMUstate *state)
@@ -253,6 +247,10 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size
     uint32_t version = 0, guid_len = 0, n_fields = 0, checksum = 0;
     REQUIRE(call, take_bytes(&k, magic, 8) && memcmp(magic, MAGIC, 8) == 0,
             "not a PainleveRod FMU state (%zu bytes, no 'PRODSTAT' header)", size);
+    /* The checksum first: any damage is named as such, wherever it is. */
+    Cursor tail = { .in = k.in, .at = size - 4, .size = size };
+    REQUIRE(call, size >= 12 && take_u32(&tail, &checksum) && checksum == fnv1a(k.in, size - 4),
+            "checksum mismatch: the bytes are truncated or corrupted");
     REQUIRE(call, take_u32(&k, &version) && version == FORMAT_VERSION,
             "state format version %u, this binary reads version %u", version, FORMAT_VERSION);
     REQUIRE(call, take_u32(&k, &guid_len) && guid_len < sizeof guid && take_bytes(&k, guid, guid_len),
@@ -263,13 +261,13 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size
             (size_t)N_FIELDS);
     Snapshot s;
     memset(&s, 0, sizeof s);
+    model_reset(&s.model);
     for (size_t i = 0; i < N_FIELDS; ++i) {
-        const char *wrong = read_field(&k, &FIELDS[i], &s);
-        REQUIRE(call, !wrong, "field %zu ('%s'): %s", i, FIELDS[i].name, wrong);
+        const ModelField f = field(i);
+        const char *wrong = read_field(&k, &f, &s);
+        REQUIRE(call, !wrong, "field %zu ('%s'): %s", i, f.name, wrong);
     }
-    const size_t body = k.at;
-    REQUIRE(call, take_u32(&k, &checksum) && checksum == fnv1a(k.in, body), "checksum mismatch: the bytes are corrupted");
-    REQUIRE(call, k.at == size, "%zu bytes after the end of the state", size - k.at);
+    REQUIRE(call, k.at == size - 4, "%zu bytes after the end of the state", size - 4 - k.at);
     const char *bad = implausible(&s);
     REQUIRE(call, !bad, "field '%s' holds a value this model cannot have", bad);
     Snapshot *out = *state ? (Snapshot *)*state : in->cb.allocateMemory(1, sizeof(Snapshot));

@@ -1,63 +1,111 @@
-/* PainleveRod's metadata and the small model interface that the FMI layer
- * calls: value references in the order of modelDescription.xml, variable
- * ranges, start values, derived values. Knows the variables, not the standard. */
+/* The model interface: everything a model provides to the FMI layers that sit
+ * on it, in the way of the Reference-FMUs. An FMI file calls only these
+ * functions and knows no state, mode or physics; the model knows no FMI.
+ * The model's own metadata and data (config.h) fill in the constants. */
 #ifndef MODEL_H
 #define MODEL_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "rod.h"
+#include "config.h"
 
-#define MODEL_IDENTIFIER PainleveRod
+typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
+typedef enum { KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE } VariableKind;
 
-/* Value references, unique across types, as in modelDescription.xml. */
-typedef enum {
-    VR_ALPHA, VR_MU, VR_DELTA, VR_EPSILON,
-    VR_X, VR_V, VR_Y, VR_W, VR_THETA, VR_PHI,
-    VR_DER_X, VR_DER_V, VR_DER_Y, VR_DER_W, VR_DER_THETA, VR_DER_PHI,
-    VR_F_N, VR_F_T, VR_ENERGY,
-    VR_MODE,    /* Integer */
-    VR_CONTACT, /* Boolean */
-    VR_COUNT
-} ValueReference;
-
-#define N_REALS (VR_ENERGY + 1)
-
-typedef enum { KIND_PARAMETER, KIND_STATE, KIND_CALCULATED } VariableKind;
+/* Value references, in the order of config.h's list and modelDescription.xml. */
+#define MODEL_VR_ENUM(id, ...) VR_##id,
+typedef enum { MODEL_VARIABLES(MODEL_VR_ENUM) VR_COUNT } ValueReference;
+#undef MODEL_VR_ENUM
 
 typedef struct {
     const char *name;
+    VariableType type;
     VariableKind kind;
     double min, max; /* allowed range of a settable value, both inclusive */
 } VariableInfo;
 
-/* NULL if vr is not a Real variable. */
-const VariableInfo *model_real_info(unsigned int vr);
+/* ------------------------------------------------------------ variables */
 
-/* The model's data: parameters, states, modes, and derived values cached
- * until a setter marks them stale. */
+/* NULL if vr is not a variable of the model. */
+const VariableInfo *model_variable(unsigned int vr);
+
+/* Parameters and initial states may be set before initialization ends. */
+bool model_settable(const VariableInfo *info);
+
+/* The start values of every variable: a new model. */
+void model_reset(Model *m);
+
+/* NULL when value is allowed for settable variable vr, else why not. */
+const char *model_check(unsigned int vr, double value);
+
+/* Sets a settable variable (checked before); values travel as double
+ * whatever the variable's type. */
+void model_set(Model *m, unsigned int vr, double value);
+double model_get(Model *m, unsigned int vr);
+
+/* ---------------------------------------------------- continuous states */
+
+/* The value reference of continuous state i (for messages and checks). */
+unsigned int model_state_vr(size_t i);
+
+void model_get_states(const Model *m, double x[MODEL_NX]);
+void model_set_states(Model *m, const double x[MODEL_NX]);
+void model_get_derivatives(Model *m, double dx[MODEL_NX]);
+void model_get_indicators(Model *m, double z[MODEL_NZ]);
+void model_get_nominals(const Model *m, double nominal[MODEL_NX]);
+
+/* The current mode's right-hand side, indicators and d der(x)/d x at a trial
+ * state x, for an embedded integrator; the model is not changed. */
+void model_derivatives_at(const Model *m, const double x[MODEL_NX], double dx[MODEL_NX]);
+void model_indicators_at(const Model *m, const double x[MODEL_NX], double z[MODEL_NZ]);
+void model_jacobian_at(const Model *m, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
+
+/* ------------------------------------------------------- modes, events */
+
+/* The initial mode, decided from the state alone (initialization mode). */
+void model_decide_initial_mode(Model *m);
+
+/* Initialization ends at `time`: the initial mode, the event record reset. */
+void model_start(Model *m, double time);
+
+/* Integration (re)starts from the current state (the event log's reference). */
+void model_begin_integration(Model *m);
+
 typedef struct {
-    RodParams params;
-    double x[ROD_NX];
-    RodMode mode;
-    bool stale;
-    double dx[ROD_NX], z[ROD_NZ];
-    double F_N, F_T, energy;
-} Model;
+    bool states_changed; /* the state was moved: integration must restart */
+    bool switched;       /* the mode changed */
+    char text[768];      /* what happened, for the event log; or why it failed */
+} ModelEvent;
 
-void model_set_start_values(Model *m);
+/* The event update at `time`: new modes iterated to a fixpoint, the state
+ * moved off every switching surface, the switch recorded. False, with the
+ * reason in e->text, if the modes do not settle or too many events fall on
+ * one instant (a Zeno run). */
+bool model_event_update(Model *m, double time, ModelEvent *e);
 
-/* NULL when the value is allowed, else a reason naming the range. */
-const char *model_check_real(unsigned int vr, double value);
+/* ------------------------------------------------ partial derivatives */
 
-void model_set_real(Model *m, unsigned int vr, double value);
-double model_get_real(Model *m, unsigned int vr);
+/* d unknown / d known of the current mode's smooth branch, analytic. Unknowns
+ * are continuous Reals (states, derivatives, calculated outputs), knowns
+ * states and parameters. NULL on success, else why the pair has none. */
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value);
 
-/* Recomputes the cached derived values if a setter made them stale. */
-void model_update_derived(Model *m);
+/* ------------------------------------------------------ FMU state fields */
 
-/* The initial mode, decided from the initial state alone (MODEL.md §2). */
-void model_initial_mode(Model *m);
+/* What an FMU state holds of the model, by name: every parameter, state and
+ * discrete variable, then the internals of config.h. */
+typedef struct {
+    const char *name;
+    size_t offset; /* in Model */
+    VariableType type;
+} ModelField;
+
+extern const ModelField model_fields[];
+extern const size_t model_n_fields;
+
+/* NULL if m (restored from bytes) holds values this model can have, else
+ * the name of the first field that does not. */
+const char *model_implausible(const Model *m);
 
 #endif

@@ -70,13 +70,15 @@ double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX])
     return (k.a + p->alpha * s * c * F) / (1 + p->alpha * s * s);
 }
 
-double rod_energy(const RodParams *p, const double x[ROD_NX])
+double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX])
 {
-    /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. */
+    /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. The
+     * spring holds energy only while it pushes: after a damped lift-off below
+     * the floor (y < 0, F_N = 0) its 0.5 (y/eps)^2 has gone to the damper. */
     const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
     const double Xd = x[ROD_V] + phi * s, Yd = x[ROD_W] + phi * c;
     const double y = x[ROD_Y];
-    const double spring = y < 0 ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
+    const double spring = m.contact ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
     return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / p->alpha + (y + s) + spring;
 }
 
@@ -259,54 +261,71 @@ static int wanted_side(const RodParams *p, RodMode m, int i, const double x[ROD_
     }
 }
 
-/* Which state moves indicator i, and in which direction to raise it. */
-static void mover_of(int i, int *state, int *direction)
+/* The state whose smallest relative move changes indicator i most, and the
+ * direction of that move that raises it; -1 if no state moves it. */
+static int steepest_state(const RodParams *p, RodMode m, int i, const double x[ROD_NX],
+                          const double nominal[ROD_NX], int *direction)
 {
-    switch (i) {
-    case ROD_Z_Y: *state = ROD_Y; *direction = +1; break;
-    case ROD_Z_FORCE: *state = ROD_Y; *direction = -1; break;
-    case ROD_Z_SLIP: *state = ROD_V; *direction = +1; break;
-    default: *state = ROD_W; *direction = +1; break;
+    double z0[ROD_NZ], z[ROD_NZ], trial[ROD_NX];
+    rod_event_indicators(p, m, x, z0);
+    int best = -1;
+    double largest = 0;
+    for (int j = 0; j < ROD_NX; ++j) {
+        for (int k = 0; k < ROD_NX; ++k) trial[k] = x[k];
+        trial[j] += 1e-6 * nominal[j];
+        rod_event_indicators(p, m, trial, z);
+        const double change = z[i] - z0[i];
+        if (fabs(change) > largest) {
+            largest = fabs(change);
+            best = j;
+            *direction = sign_of(change);
+        }
     }
+    return best;
 }
 
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX])
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool *moved)
 {
     double z[ROD_NZ], nominal[ROD_NX];
-    bool moved = false;
+    *moved = false;
     rod_nominals(p, nominal);
     for (int i = 0; i < ROD_NZ; ++i) {
         rod_event_indicators(p, m, x, z);
         const int side = wanted_side(p, m, i, x);
         if (z[i] != 0 || side == 0) continue;
-        int state, direction;
-        mover_of(i, &state, &direction);
+        int direction = 0;
+        const int state = steepest_state(p, m, i, x, nominal, &direction);
+        if (state < 0) return false;
         const double start = x[state];
+        bool left = false;
         /* The smallest step, doubling from 1e-15 nominal, that leaves the surface. */
-        for (double step = 1e-15 * nominal[state]; step < nominal[state]; step *= 2) {
+        for (double step = 1e-15 * nominal[state]; step < nominal[state] && !left; step *= 2) {
             x[state] = start + side * direction * step;
             rod_event_indicators(p, m, x, z);
-            if (sign_of(z[i]) == side) break;
+            left = sign_of(z[i]) == side;
         }
-        moved = true;
+        *moved = true;
+        if (!left) return false;
     }
-    return moved;
+    return true;
 }
 
-bool rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed)
+RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed)
 {
     *x_changed = false;
     /* decide and move-off must reach a fixpoint; a few rounds always do
      * unless the rules ping-pong, which is reported, never looped on. */
     for (int round = 0; round < 8; ++round) {
-        bool changed;
+        bool changed, moved;
         const RodMode n = rod_decide_mode(p, *m, x, &changed);
         *x_changed |= changed;
         const bool same = n.contact == m->contact && n.slip == m->slip;
         *m = n;
         if (!same || changed) continue;
-        if (!rod_move_off_surfaces(p, *m, x)) return true;
-        *x_changed = true;
+        const bool off = rod_move_off_surfaces(p, *m, x, &moved);
+        *x_changed |= moved;
+        if (!off) return ROD_STUCK_ON_SURFACE;
+        if (!moved) return ROD_SETTLED;
     }
-    return false;
+    return ROD_PING_PONG;
 }

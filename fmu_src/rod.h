@@ -8,11 +8,16 @@
 
 #include <stdbool.h>
 
+#include "namespace.h" /* every source includes this header: their names, prefixed */
+
 /* Continuous states, in the order of modelDescription.xml. */
 enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
 
 /* Event indicators. Slots 2 and 3 change meaning with the mode (see rod.c). */
 enum { ROD_Z_Y, ROD_Z_FORCE, ROD_Z_SLIP, ROD_Z_AUX, ROD_NZ };
+
+/* Algebraic outputs. */
+enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY, ROD_NOUT };
 
 typedef struct {
     double alpha;   /* m l^2 / I, > 0 */
@@ -47,8 +52,9 @@ double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
 /* F_T: s mu F_N while slipping, the force that keeps v' = 0 while sticking. */
 double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
 
-/* Mechanical energy plus the spring's, in units of m g l. */
-double rod_energy(const RodParams *p, const double x[ROD_NX]);
+/* Mechanical energy plus the spring's while the contact force acts, in units
+ * of m g l. */
+double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX]);
 
 void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
 
@@ -66,12 +72,14 @@ RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x
 
 /* Moves x off every switching surface on which an indicator of mode m is
  * exactly 0, towards the side mode m lives on, so that no importer restarts
- * integration on a root. Returns true if x changed. */
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX]);
+ * integration on a root. Sets *moved if x changed; returns false if a
+ * surface could not be left by a step below the state's nominal. */
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool *moved);
 
-/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces.
- * Returns false if the decision does not settle (mode ping-pong). */
-bool rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed);
+typedef enum { ROD_SETTLED, ROD_PING_PONG, ROD_STUCK_ON_SURFACE } RodEventResult;
+
+/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces. */
+RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed);
 
 const char *rod_indicator_name(const RodMode m, int i);
 

@@ -21,6 +21,9 @@
 
 #include "fmi_harness.h"
 
+/* The Real variables come first (config.h): value references 0 .. N_REALS - 1. */
+#define N_REALS VR_MODE
+
 static FmiApi api;
 static const FmiApi *const f = &api;
 static long checks, failures;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "model_guid.h"
+#include "model_description.h"
 
 const char *const harness_guid = MODEL_GUID;
 

@@ -1,0 +1,80 @@
+/* PainleveRod's metadata: what the generic FMI layer needs to know of this
+ * model, in one place. The variable list below drives the value references,
+ * range checks, getters, setters and the FMU state; its order is that of
+ * modelDescription.xml (tests/test_fmu_standard.py checks the two agree). */
+#ifndef CONFIG_H
+#define CONFIG_H
+
+#include "rod.h"
+
+#define MODEL_IDENTIFIER PainleveRod
+#define MODEL_NAME "PainleveRod"
+#define MODEL_NX ROD_NX
+#define MODEL_NZ ROD_NZ
+
+/* Parameter ranges keep every derived quantity finite in double precision:
+ * F_N ~ y/eps^2 and phi^2 must not overflow. */
+#define STATE_BOUND 1e6
+
+/* VARIABLE(ID, name, type, kind, field, min, max): field is the member of Model that
+ * holds the value; min and max bound what a setter accepts (settable kinds).
+ * Kinds: PARAMETER (fixed, set before initialization ends), STATE (a
+ * continuous state, initial exact), CALCULATED (continuous, derived),
+ * DISCRETE (changes only at events). Reals first, then Integers, Booleans. */
+#define MODEL_VARIABLES(VARIABLE)                                                                  \
+    VARIABLE(ALPHA, "alpha", REAL, PARAMETER, params.alpha, 1e-6, 1e6)                             \
+    VARIABLE(MU, "mu", REAL, PARAMETER, params.mu, 0, 1e6)                                         \
+    VARIABLE(DELTA, "delta", REAL, PARAMETER, params.delta, 0, 1e6)                                \
+    VARIABLE(EPSILON, "epsilon", REAL, PARAMETER, params.epsilon, 1e-8, 1)                         \
+    VARIABLE(X, "x", REAL, STATE, x[ROD_X], -STATE_BOUND, STATE_BOUND)                             \
+    VARIABLE(V, "v", REAL, STATE, x[ROD_V], -STATE_BOUND, STATE_BOUND)                             \
+    VARIABLE(Y, "y", REAL, STATE, x[ROD_Y], -STATE_BOUND, STATE_BOUND)                             \
+    VARIABLE(W, "w", REAL, STATE, x[ROD_W], -STATE_BOUND, STATE_BOUND)                             \
+    VARIABLE(THETA, "theta", REAL, STATE, x[ROD_THETA], -STATE_BOUND, STATE_BOUND)                 \
+    VARIABLE(PHI, "phi", REAL, STATE, x[ROD_PHI], -STATE_BOUND, STATE_BOUND)                       \
+    VARIABLE(DER_X, "der(x)", REAL, CALCULATED, dx[ROD_X], 0, 0)                                   \
+    VARIABLE(DER_V, "der(v)", REAL, CALCULATED, dx[ROD_V], 0, 0)                                   \
+    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ROD_Y], 0, 0)                                   \
+    VARIABLE(DER_W, "der(w)", REAL, CALCULATED, dx[ROD_W], 0, 0)                                   \
+    VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
+    VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)                             \
+    VARIABLE(F_N, "F_N", REAL, CALCULATED, out[ROD_OUT_F_N], 0, 0)                                 \
+    VARIABLE(F_T, "F_T", REAL, CALCULATED, out[ROD_OUT_F_T], 0, 0)                                 \
+    VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[ROD_OUT_ENERGY], 0, 0)                        \
+    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, t_switch, 0, 0)                                 \
+    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, t_stick_begin, 0, 0)                  \
+    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, t_stick_end, 0, 0)                        \
+    VARIABLE(MODE, "mode", INTEGER, DISCRETE, mode.slip, 0, 0)                                     \
+    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, switches, 0, 0)                              \
+    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, sticks, 0, 0)                                    \
+    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, mode.contact, 0, 0)
+
+/* The model's data beyond its variables that an FMU state must carry
+ * (the event log's reference and the event guard): INTERNAL(name, field, type). */
+#define MODEL_INTERNALS(INTERNAL)                         \
+    INTERNAL("z_at_restart0", z_at_restart[0], REAL)      \
+    INTERNAL("z_at_restart1", z_at_restart[1], REAL)      \
+    INTERNAL("z_at_restart2", z_at_restart[2], REAL)      \
+    INTERNAL("z_at_restart3", z_at_restart[3], REAL)      \
+    INTERNAL("initial_event", initial_event, BOOLEAN)     \
+    INTERNAL("instant", instant, REAL)                    \
+    INTERNAL("events_at_instant", events_at_instant, INTEGER)
+
+/* The model's data: parameters, states, modes, what the events record, and
+ * derived values cached until a setter marks them stale. Plain data with no
+ * pointers, so an FMU state may hold a copy. */
+typedef struct {
+    RodParams params;
+    double x[ROD_NX];
+    RodMode mode;
+    double t_switch, t_stick_begin, t_stick_end; /* times of the last switch, stick start, stick end */
+    int switches, sticks;                        /* mode switches and sticks since initialization */
+    double z_at_restart[ROD_NZ];                 /* indicators where integration last (re)started */
+    bool initial_event;                          /* the event iteration right after initialization */
+    double instant;                              /* time of the current run of events at one instant */
+    int events_at_instant;
+    bool stale;
+    double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT];
+} Model;
+
+#endif

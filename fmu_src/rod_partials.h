@@ -1,0 +1,16 @@
+/* Analytic partial derivatives of the rod's right-hand side and outputs. */
+#ifndef ROD_PARTIALS_H
+#define ROD_PARTIALS_H
+
+#include "rod.h"
+
+enum { ROD_P_ALPHA, ROD_P_MU, ROD_P_DELTA, ROD_P_EPSILON, ROD_NP };
+
+typedef struct {
+    double dx_x[ROD_NX][ROD_NX], dx_p[ROD_NX][ROD_NP];
+    double out_x[ROD_NOUT][ROD_NX], out_p[ROD_NOUT][ROD_NP];
+} RodPartials;
+
+void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d);
+
+#endif
