@@ -110,3 +110,10 @@ def test_fuzzing_finds_nothing(build, tmp_path):
     assert_clean(code, output, "fuzz_fmi")
     assert not found
     assert "Done " in output
+
+
+def test_a_state_on_a_stick_fold_leaves_it_by_a_state_the_fold_depends_on(build):
+    # With delta = 0 the fold a + q_+ F_N depends on neither v nor w; the move must not use them.
+    code, output = run([build / "rod_unit"], timeout=60)
+    assert_clean(code, output, "rod_unit")
+    assert "all checks passed" in output

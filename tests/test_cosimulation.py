@@ -167,3 +167,18 @@ def test_without_sundials_the_fmu_is_model_exchange_only(tmp_path):
     md = read_model_description(fmu)
     assert md.coSimulation is None and md.modelExchange is not None
     assert validate_fmu(fmu) == []
+
+
+def test_without_a_tolerance_cosimulation_uses_the_default_experiments(unzipdir):
+    # One source of truth: the DefaultExperiment's tolerance is what a master passes and what the
+    # FMU uses when none is passed. A different tolerance gives a (slightly) different run.
+    default = float(read_model_description(unzipdir).defaultExperiment.tolerance)
+    runs = {}
+    for tolerance in (None, default, default / 100):
+        rod = Slave(unzipdir, tolerance=tolerance)
+        for _ in range(10):
+            rod.step(0.01)
+        runs[tolerance] = rod.states()
+    assert np.array_equal(runs[None], runs[default])
+    assert not np.array_equal(runs[default], runs[default / 100])
+    np.testing.assert_allclose(runs[default / 100], runs[default], rtol=1e-4)

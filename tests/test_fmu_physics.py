@@ -60,6 +60,21 @@ def test_energy_never_increases_with_damping_and_friction(fmu_path, case):
     assert E[-1] < E[0]
 
 
+def test_energy_is_constant_in_free_flight_after_a_damped_lift_off(fmu_path):
+    # delta = 1: the end leaves the spring at y = -eps delta w < 0, where F_N = 0. The spring's
+    # 0.5 (y/eps)^2 goes to the damper at that instant; above and below the floor the flight conserves E.
+    eps = 1e-3
+    r = simulate(fmu_path, 0.1, rtol=1e-10, output_interval=eps / 50, epsilon=eps, delta=1.0)
+    last_contact = np.flatnonzero(r["contact"])[-1]
+    flight = np.arange(last_contact + 1, len(r["time"]))
+    assert np.any(r["y"][flight] < 0) and np.any(r["y"][flight] > 0), "the flight must start below the floor"
+    E = r["energy"][flight]
+    assert np.ptp(E) <= 1e-8 * abs(E[0])
+    y_off = r["y"][last_contact + 1]                  # the lift-off event row (fmpy records it twice)
+    released = r["energy"][last_contact] - E[0]
+    assert released == pytest.approx(0.5 * (y_off / eps) ** 2, rel=1e-6)
+
+
 CONSISTENT = dict(alpha=3, mu=1, delta=1, theta=0.3, phi=0.0, v=0.1, y=0.0, w=0.0)
 
 

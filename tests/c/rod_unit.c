@@ -1,0 +1,70 @@
+/* rod.c's event update on states placed exactly on a switching surface, which
+ * no importer reaches on purpose but round-off does: the state must leave the
+ * surface to the side the mode lives on, by moving a state the indicator
+ * depends on. Built by tests/c/CMakeLists.txt, run by tests/test_c_robustness.py;
+ * exit status 0 only if every check passed. */
+#include <math.h>
+#include <stdio.h>
+
+#include "rod.h"
+
+static int failures;
+
+#define CHECK(cond, ...)                                 \
+    do {                                                 \
+        if (!(cond)) {                                   \
+            ++failures;                                  \
+            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+            fprintf(stderr, __VA_ARGS__);                \
+            fputc('\n', stderr);                         \
+        }                                                \
+    } while (0)
+
+/* A sticking state with the forward fold a + q_+ F_N exactly 0: y is walked
+ * ulp by ulp from the fold's root until the indicator, as rod.c computes it,
+ * is 0. False if no such double lies near. */
+static bool on_forward_fold(const RodParams *p, double x[ROD_NX])
+{
+    const RodMode stick = { true, 0 };
+    const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    /* F_N = -y/eps^2 (delta = 0), so a + q_+ F_N = 0 at y = a eps^2 / q_+. */
+    x[ROD_Y] = k.a * p->epsilon * p->epsilon / k.q_plus;
+    double z[ROD_NZ];
+    for (int i = 0; i < 64; ++i) {
+        rod_event_indicators(p, stick, x, z);
+        if (z[ROD_Z_SLIP] == 0) return true;
+        x[ROD_Y] = nextafter(x[ROD_Y], z[ROD_Z_SLIP] > 0 ? 0 : -INFINITY);
+    }
+    return false;
+}
+
+static void test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_the_fold_depends_on(void)
+{
+    const RodParams p = { .alpha = 3, .mu = 3, .delta = 0, .epsilon = 1e-3 };
+    int found = 0;
+    for (double theta = 0.6; theta < 1.4; theta += 0.1) {
+        double x[ROD_NX] = { [ROD_V] = 0, [ROD_W] = 1e-4, [ROD_THETA] = theta, [ROD_PHI] = 0.8 };
+        if (!on_forward_fold(&p, x)) continue;
+        ++found;
+        const double before[ROD_NX] = { x[0], x[1], x[2], x[3], x[4], x[5] };
+        bool moved = false;
+        CHECK(rod_move_off_surfaces(&p, (RodMode){ true, 0 }, x, &moved), "theta = %g: search failed", theta);
+        double z[ROD_NZ];
+        rod_event_indicators(&p, (RodMode){ true, 0 }, x, z);
+        CHECK(moved && z[ROD_Z_SLIP] < 0, "theta = %g: fold indicator %g after the move, wanted < 0", theta,
+              z[ROD_Z_SLIP]);
+        /* v and w do not enter a + q_+ F_N when delta = 0: moving them cannot leave the fold. */
+        CHECK(x[ROD_V] == before[ROD_V] && x[ROD_W] == before[ROD_W], "theta = %g: moved v or w", theta);
+        double largest = 0;
+        for (int i = 0; i < ROD_NX; ++i) largest = fmax(largest, fabs(x[i] - before[i]) / fmax(fabs(before[i]), 1e-300));
+        CHECK(largest < 1e-9, "theta = %g: moved by %g relative, not a nudge", theta, largest);
+    }
+    CHECK(found >= 3, "only %d of 8 angles have a double exactly on the fold", found);
+}
+
+int main(void)
+{
+    test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_the_fold_depends_on();
+    printf("rod_unit: %s\n", failures ? "FAILED" : "all checks passed");
+    return failures != 0;
+}
