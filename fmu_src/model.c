@@ -79,7 +79,7 @@ void model_update_derived(Model *m)
     rod_event_indicators(&m->params, m->mode, m->x, m->z);
     m->F_N = rod_normal_force(&m->params, m->mode, m->x);
     m->F_T = rod_friction_force(&m->params, m->mode, m->x);
-    m->energy = rod_energy(&m->params, m->x);
+    m->energy = rod_energy(&m->params, m->mode, m->x);
     m->stale = false;
 }
 

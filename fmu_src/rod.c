@@ -70,13 +70,15 @@ double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX])
     return (k.a + p->alpha * s * c * F) / (1 + p->alpha * s * s);
 }
 
-double rod_energy(const RodParams *p, const double x[ROD_NX])
+double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX])
 {
-    /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. */
+    /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. The spring
+     * holds energy only while its force acts: after a damped lift-off (g = 0 at
+     * y < 0) the rod flies with y < 0 and no force, and its energy must stay constant. */
     const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
     const double Xd = x[ROD_V] + phi * s, Yd = x[ROD_W] + phi * c;
     const double y = x[ROD_Y];
-    const double spring = y < 0 ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
+    const double spring = m.contact ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
     return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / p->alpha + (y + s) + spring;
 }
 

@@ -47,8 +47,8 @@ double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
 /* F_T: s mu F_N while slipping, the force that keeps v' = 0 while sticking. */
 double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
 
-/* Mechanical energy plus the spring's, in units of m g l. */
-double rod_energy(const RodParams *p, const double x[ROD_NX]);
+/* Mechanical energy plus the spring's (counted while mode m's contact force acts), in units of m g l. */
+double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX]);
 
 void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
 
