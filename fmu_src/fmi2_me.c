@@ -12,6 +12,7 @@
 
 #include "fmi2_instance.h"
 #include "model_guid.h"
+#include "rod_partials.h"
 
 /* Events within one window of the contact's fastest time scale, eps^2, that
  * end the run as a Zeno error: a physical IWC has at most four there. */
@@ -325,6 +326,39 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* ------------------------------------------------- directional derivatives */
 
+/* Column of `vr` in rod_partials' matrices: states 0..ROD_NX-1, then the
+ * parameters; -1 for any other variable. */
+static int known_column(unsigned int vr)
+{
+    switch (vr) {
+    case VR_ALPHA: return ROD_NX + ROD_P_ALPHA;
+    case VR_MU: return ROD_NX + ROD_P_MU;
+    case VR_DELTA: return ROD_NX + ROD_P_DELTA;
+    case VR_EPSILON: return ROD_NX + ROD_P_EPSILON;
+    default: return vr >= VR_X && vr <= VR_PHI ? (int)(vr - VR_X) : -1;
+    }
+}
+
+/* d unknown / d known (Reals only) of the current mode's smooth branch. A known
+ * as unknown (a parameter, or a state as output) is its own identity. */
+static double partial(const RodPartials *d, unsigned int unknown, int column)
+{
+    const int own = known_column(unknown);
+    if (own >= 0) return own == column ? 1.0 : 0.0;
+    const bool by_state = column < ROD_NX;
+    const int j = by_state ? column : column - ROD_NX;
+    if (unknown >= VR_DER_X && unknown <= VR_DER_PHI) {
+        const int i = (int)(unknown - VR_DER_X);
+        return by_state ? d->dx_x[i][j] : d->dx_p[i][j];
+    }
+    const int i = unknown == VR_F_N ? ROD_OUT_F_N : unknown == VR_F_T ? ROD_OUT_F_T : ROD_OUT_ENERGY;
+    return by_state ? d->out_x[i][j] : d->out_p[i][j];
+}
+
+/* FMI 2.0 defines directional derivatives of Real variables only: an Integer or
+ * Boolean reference (mode, contact) on either side is an error. In Initialization
+ * Mode current() decides the mode from the initial state (model_initial_mode);
+ * the derivatives are those of that mode's branch. */
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown,
                                         const fmi2Real dvKnown[], fmi2Real dvUnknown[])
@@ -333,19 +367,26 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
     BEGIN(call, READABLE);
     REQUIRE(call, (nUnknown == 0 || (vUnknown_ref && dvUnknown)) && (nKnown == 0 || (vKnown_ref && dvKnown)),
             "an array is NULL");
-    for (size_t j = 0; j < nKnown; ++j)
-        REQUIRE(call, vKnown_ref[j] >= VR_X && vKnown_ref[j] <= VR_PHI,
-                "known value reference %u is not a continuous state (states are %d..%d)", vKnown_ref[j], VR_X, VR_PHI);
+    /* Knowns (FMI 2.0 §2.2.8): the continuous states; in Initialization Mode also the
+     * initial="exact" parameters. */
+    const bool init = in->state == InitializationMode;
+    for (size_t j = 0; j < nKnown; ++j) {
+        const int column = known_column(vKnown_ref[j]);
+        REQUIRE(call, column >= 0 && (column < ROD_NX || init),
+                "known value reference %u is not a continuous state (%d..%d)%s%s", vKnown_ref[j], VR_X, VR_PHI,
+                init ? " nor a parameter" : column >= ROD_NX ? " (parameters are knowns in Initialization Mode only)" : "",
+                model_real_info(vKnown_ref[j]) ? "" : ": FMI 2.0 defines directional derivatives for Reals only");
+    }
     for (size_t i = 0; i < nUnknown; ++i)
-        REQUIRE(call, vUnknown_ref[i] >= VR_DER_X && vUnknown_ref[i] <= VR_DER_PHI,
-                "unknown value reference %u is not a state derivative (derivatives are %d..%d)", vUnknown_ref[i],
-                VR_DER_X, VR_DER_PHI);
+        REQUIRE(call, model_real_info(vUnknown_ref[i]),
+                "unknown value reference %u is not a Real variable (Reals are 0..%d): FMI 2.0 defines directional "
+                "derivatives for Reals only", vUnknown_ref[i], N_REALS - 1);
     const Model *m = current(in);
-    double J[ROD_NX][ROD_NX];
-    rod_jacobian(&m->params, m->mode, m->x, J);
+    RodPartials d;
+    rod_partials(&m->params, m->mode, m->x, &d);
     for (size_t i = 0; i < nUnknown; ++i) {
         double sum = 0;
-        for (size_t j = 0; j < nKnown; ++j) sum += J[vUnknown_ref[i] - VR_DER_X][vKnown_ref[j] - VR_X] * dvKnown[j];
+        for (size_t j = 0; j < nKnown; ++j) sum += partial(&d, vUnknown_ref[i], known_column(vKnown_ref[j])) * dvKnown[j];
         dvUnknown[i] = sum;
     }
     return fmi2OK;
