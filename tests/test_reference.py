@@ -144,6 +144,9 @@ def test_energy_rate_is_the_power_of_the_contact_forces(mode):
             power = 0.0
         else:
             power = -delta * x[3] ** 2 / eps - mu * F * abs(x[1])
+        states = dict(zip(("x", "v", "y", "w", "theta", "phi"), x))
+        assert rods["exact"].energy(x, mode) == pytest.approx(
+            rod_sim.rod_energy(states, alpha, eps, contact=mode != FLIGHT), rel=1e-15)
         exact = grad @ rods["exact"].rhs(mode)(0.0, x)
         assert exact == pytest.approx(power, rel=1e-9, abs=1e-9)
         if mode == STICK:
