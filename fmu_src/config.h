@@ -6,6 +6,7 @@
 #define CONFIG_H
 
 #include "rod.h"
+#include "rod_partials.h"
 
 #define MODEL_IDENTIFIER PainleveRod
 #define MODEL_NAME "PainleveRod"
@@ -61,7 +62,7 @@
     INTERNAL("events_at_instant", events_at_instant, INTEGER)
 
 /* The model's data: parameters, states, modes, what the events record, and
- * derived values cached until a setter marks them stale. Plain data with no
+ * derived values and partial derivatives cached until a change marks them stale. Plain data with no
  * pointers, so an FMU state may hold a copy. */
 typedef struct {
     RodParams params;
@@ -73,8 +74,9 @@ typedef struct {
     bool initial_event;                          /* the event iteration right after initialization */
     double instant;                              /* time of the current run of events at one instant */
     int events_at_instant;
-    bool stale;
+    bool stale, partials_stale;
     double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT];
+    RodPartials partials;
 } Model;
 
 #endif

@@ -349,8 +349,10 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* ------------------------------------------------- directional derivatives */
 
-/* Knowns are states, and while initializing also the parameters (the knowns of
- * InitialUnknowns); unknowns are the continuous Reals. Analytic, every mode. */
+/* Knowns are the states, and in Initialization Mode the parameters too (the
+ * knowns of InitialUnknowns, FMI 2.0.4 §2.2.8); unknowns are Reals (FMI 2.0
+ * defines no other). Analytic, every mode; while initializing, those of the
+ * mode decided from the initial values. */
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown,
                                         const fmi2Real dvKnown[], fmi2Real dvUnknown[])
@@ -364,14 +366,14 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
         const VariableInfo *k = model_variable(vKnown_ref[j]);
         REQUIRE(call, k && (k->kind == KIND_STATE || (initializing && k->kind == KIND_PARAMETER)),
                 "known value reference %u is not a continuous state%s", vKnown_ref[j],
-                initializing ? " or a parameter" : " (parameters are knowns only in initialization mode)");
+                initializing ? " nor a parameter" : " (parameters are knowns in Initialization Mode only)");
         REQUIRE(call, isfinite(dvKnown[j]), "dvKnown[%zu] is not finite", j);
     }
     for (size_t i = 0; i < nUnknown; ++i) {
         const VariableInfo *u = model_variable(vUnknown_ref[i]);
-        REQUIRE(call, u && u->type == TYPE_REAL && (u->kind == KIND_STATE || u->kind == KIND_CALCULATED),
-                "unknown value reference %u is not a continuous Real (a state, a derivative or a calculated output)",
-                vUnknown_ref[i]);
+        REQUIRE(call, u && u->type == TYPE_REAL,
+                "unknown value reference %u is not a Real variable: FMI 2.0 defines directional derivatives for "
+                "Reals only", vUnknown_ref[i]);
     }
     Model *m = instance_model(in);
     for (size_t i = 0; i < nUnknown; ++i) {

@@ -61,8 +61,7 @@ static void restore(Instance *in, const Snapshot *s)
     in->tolerance = s->tolerance;
     in->last_successful_time = s->last_successful_time;
     in->state = (InstanceState)s->state;
-    in->model = s->model;
-    in->model.stale = true;
+    model_restore(&in->model, &s->model);
     /* Co-Simulation restarts CVODE from the restored state. */
     in->solver_live = false;
 }

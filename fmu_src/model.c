@@ -6,8 +6,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "rod_partials.h"
-
 /* A run of this many events at one instant (no progress in time beyond
  * round-off) is a Zeno run, not a fast one: a physical IWC has at most four
  * switches at one instant, and a fast rod's events advance time. */
@@ -36,7 +34,8 @@ void model_reset(Model *m)
                   .x = { [ROD_X] = 0, [ROD_V] = 1, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 0.5 },
                   .mode = { false, +1 },
                   .instant = -INFINITY,
-                  .stale = true };
+                  .stale = true,
+                  .partials_stale = true };
 }
 
 const char *model_check(unsigned int vr, double value)
@@ -55,10 +54,22 @@ const char *model_check(unsigned int vr, double value)
 #define MODEL_SET(id, name, type, kind, field, min, max) case VR_##id: ASSIGN_##kind(m->field, value); break;
 #define MODEL_READ(id, name, type, kind, field, min, max) case VR_##id: return (double)m->field;
 
+/* Whatever changed, the cached values follow it when next asked for. */
+static void touch(Model *m)
+{
+    m->stale = m->partials_stale = true;
+}
+
 void model_set(Model *m, unsigned int vr, double value)
 {
     switch (vr) { MODEL_VARIABLES(MODEL_SET) default: break; }
-    m->stale = true;
+    touch(m);
+}
+
+void model_restore(Model *m, const Model *saved)
+{
+    *m = *saved;
+    touch(m);
 }
 
 static void update_derived(Model *m)
@@ -99,7 +110,7 @@ void model_get_states(const Model *m, double x[MODEL_NX])
 void model_set_states(Model *m, const double x[MODEL_NX])
 {
     memcpy(m->x, x, sizeof m->x);
-    m->stale = true;
+    touch(m);
 }
 
 void model_get_derivatives(Model *m, double dx[MODEL_NX])
@@ -143,7 +154,7 @@ void model_decide_initial_mode(Model *m)
     m->mode = (RodMode){ false, (v > 0) - (v < 0) };
     bool changed;
     m->mode = rod_decide_mode(&m->params, m->mode, m->x, &changed);
-    m->stale = true;
+    touch(m);
 }
 
 void model_start(Model *m, double time)
@@ -200,7 +211,7 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     const RodMode before = m->mode;
     bool moved;
     const RodEventResult r = rod_event_update(&m->params, &m->mode, m->x, &moved);
-    m->stale = true;
+    touch(m);
     e->switched = before.contact != m->mode.contact || before.slip != m->mode.slip;
     e->states_changed = moved;
     if (r != ROD_SETTLED) {
@@ -231,23 +242,25 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
     const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
-    if (!u || u->type != TYPE_REAL || (u->kind != KIND_STATE && u->kind != KIND_CALCULATED))
-        return "the unknown is not a continuous Real (a state, a derivative or a calculated output)";
+    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
     if (!k || !model_settable(k)) return "the known is neither a state nor a parameter";
-    if (u->kind == KIND_STATE) {
+    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
         *value = unknown == known;
         return NULL;
     }
-    RodPartials d;
-    rod_partials(&m->params, m->mode, m->x, &d);
+    if (m->partials_stale) {
+        rod_partials(&m->params, m->mode, m->x, &m->partials);
+        m->partials_stale = false;
+    }
+    const RodPartials *d = &m->partials;
     const bool by_state = k->kind == KIND_STATE;
     const int col = by_state ? (int)(known - VR_X) : (int)(known - VR_ALPHA);
     if (unknown >= VR_DER_X && unknown <= VR_DER_PHI) {
         const int row = (int)(unknown - VR_DER_X);
-        *value = by_state ? d.dx_x[row][col] : d.dx_p[row][col];
+        *value = by_state ? d->dx_x[row][col] : d->dx_p[row][col];
     } else {
         const int row = (int)(unknown - VR_F_N);
-        *value = by_state ? d.out_x[row][col] : d.out_p[row][col];
+        *value = by_state ? d->out_x[row][col] : d->out_p[row][col];
     }
     return NULL;
 }

@@ -44,6 +44,9 @@ const char *model_check(unsigned int vr, double value);
 void model_set(Model *m, unsigned int vr, double value);
 double model_get(Model *m, unsigned int vr);
 
+/* The model becomes `saved` (an FMU state restored). */
+void model_restore(Model *m, const Model *saved);
+
 /* ---------------------------------------------------- continuous states */
 
 /* The value reference of continuous state i (for messages and checks). */
@@ -87,8 +90,9 @@ bool model_event_update(Model *m, double time, ModelEvent *e);
 /* ------------------------------------------------ partial derivatives */
 
 /* d unknown / d known of the current mode's smooth branch, analytic. Unknowns
- * are continuous Reals (states, derivatives, calculated outputs), knowns
- * states and parameters. NULL on success, else why the pair has none. */
+ * are Reals (a state or parameter is its own identity, a discrete output is
+ * frozen between events), knowns states and parameters. NULL on success,
+ * else why the pair has none. */
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value);
 
 /* ------------------------------------------------------ FMU state fields */

@@ -46,6 +46,7 @@
 #define model_n_fields NAMESPACED(model_n_fields)
 #define model_partial_derivative NAMESPACED(model_partial_derivative)
 #define model_reset NAMESPACED(model_reset)
+#define model_restore NAMESPACED(model_restore)
 #define model_set NAMESPACED(model_set)
 #define model_set_states NAMESPACED(model_set_states)
 #define model_settable NAMESPACED(model_settable)

@@ -1,10 +1,163 @@
-/* PLACEHOLDER until the partials branch lands: d der(x)/d x only. */
+/* Partial derivatives of the rod's smooth branches, derived by hand from the
+ * equations that rod.c evaluates (the paper's eq coeffs and eq Sw, MODEL.md §1,
+ * the exact Filippov sticking field of rod.c's mode_gains).
+ *
+ * Notation: sn = sin theta, cs = cos theta, al = alpha, k = 1 + al sn^2,
+ * sg = the slip direction (+1 / -1). Within one mode the right-hand side is
+ *   x' = v,  y' = w,  theta' = phi,
+ *   slipping (sg = +1 / -1; in flight F = 0):
+ *     v' = a + q_sg F,  w' = b + p_sg F,  phi' = c_sg F
+ *   sticking (contact, sg = 0):
+ *     v' = 0,  w' = b + A_w a + S_w F,  phi' = A_phi a + S_phi F
+ * with (eq coeffs, eq Sw)
+ *   a = -phi^2 cs,  b = -1 + phi^2 sn,
+ *   q_sg = al sn cs - sg mu k,  p_sg = 1 + al cs^2 - sg mu al sn cs,  c_sg = -al (cs - sg mu sn),
+ *   S_w = (1 + al)/k,  S_phi = -al cs/k,  A_w = -al sn cs/k,  A_phi = al sn/k,
+ * and, in contact, F = g/eps = -y/eps^2 - delta w/eps (0 in flight).
+ * Parameters enter only through the gains (alpha, mu) and through F (delta, eps);
+ * a and b depend on the states alone. */
 #include "rod_partials.h"
 
+#include <math.h>
 #include <string.h>
+
+/* F and its partials: F_y = -1/eps^2, F_w = -delta/eps, F_delta = -w/eps,
+ * F_eps = 2 y/eps^3 + delta w/eps^2; all 0 in flight. */
+typedef struct { double F, y, w, delta, eps; } NormalForce;
+
+static NormalForce normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
+{
+    if (!m.contact) return (NormalForce){ 0, 0, 0, 0, 0 };
+    const double eps = p->epsilon, y = x[ROD_Y], w = x[ROD_W];
+    return (NormalForce){ rod_normal_force(p, m, x), -1 / (eps * eps), -p->delta / eps, -w / eps,
+                          2 * y / (eps * eps * eps) + p->delta * w / (eps * eps) };
+}
+
+/* How the mode's gains (rod.c's mode_gains: v' = a + v F, w' = b + w_a a + w F,
+ * phi' = phi_a a + phi F) change with alpha and with mu. */
+typedef struct { double v, w, phi, w_a, phi_a; } Gains;
+
+static void gains_dp(const RodParams *p, RodMode m, double theta, Gains *d_alpha, Gains *d_mu)
+{
+    const double sn = sin(theta), cs = cos(theta), al = p->alpha, mu = p->mu;
+    const double k = 1 + al * sn * sn;
+    if (m.contact && m.slip == 0) {
+        /* dk/dalpha = sn^2: dS_w = cs^2/k^2, dS_phi = -cs/k^2, dA_w = -sn cs/k^2,
+         * dA_phi = sn/k^2. The sticking field does not involve mu (the paper
+         * notes it for S_w, S_phi; A_w, A_phi hold no mu either). */
+        *d_alpha = (Gains){ 0, cs * cs / (k * k), -cs / (k * k), -sn * cs / (k * k), sn / (k * k) };
+        *d_mu = (Gains){ 0, 0, 0, 0, 0 };
+        return;
+    }
+    const double sg = m.slip >= 0 ? 1.0 : -1.0;  /* rod.c: slip 0 out of contact takes the + gains */
+    /* dq/dalpha = sn cs - sg mu sn^2, dp/dalpha = cs^2 - sg mu sn cs, dc/dalpha = -(cs - sg mu sn);
+     * dq/dmu = -sg k, dp/dmu = -sg al sn cs, dc/dmu = sg al sn. */
+    *d_alpha = (Gains){ sn * cs - sg * mu * sn * sn, cs * cs - sg * mu * sn * cs, -(cs - sg * mu * sn), 0, 0 };
+    *d_mu = (Gains){ -sg * k, -sg * al * sn * cs, sg * al * sn, 0, 0 };
+}
+
+/* The gains themselves (the same selection as rod.c's mode_gains). */
+static Gains gains(const RodCoeffs *c, RodMode m)
+{
+    if (m.contact && m.slip == 0) return (Gains){ 0, c->S_w, c->S_phi, c->A_w, c->A_phi };
+    if (m.slip >= 0) return (Gains){ c->q_plus, c->p_plus, c->c_plus, 0, 0 };
+    return (Gains){ c->q_minus, c->p_minus, c->c_minus, 0, 0 };
+}
+
+/* d(state derivatives)/d(parameters): with a, b free of parameters,
+ *   d rhs/dP = (d gain/dP)(a or F) + gain dF/dP. */
+static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX], double dx_p[ROD_NX][ROD_NP])
+{
+    const RodCoeffs c = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    const Gains g = gains(&c, m);
+    Gains ga, gm;
+    gains_dp(p, m, x[ROD_THETA], &ga, &gm);
+    const NormalForce F = normal_force(p, m, x);
+    const bool stick = m.contact && m.slip == 0;
+    if (!stick) {  /* v' = a + q F; 0 while sticking */
+        dx_p[ROD_V][ROD_P_ALPHA] = ga.v * F.F;
+        dx_p[ROD_V][ROD_P_MU] = gm.v * F.F;
+        dx_p[ROD_V][ROD_P_DELTA] = g.v * F.delta;
+        dx_p[ROD_V][ROD_P_EPSILON] = g.v * F.eps;
+    }
+    dx_p[ROD_W][ROD_P_ALPHA] = ga.w_a * c.a + ga.w * F.F;
+    dx_p[ROD_W][ROD_P_MU] = gm.w_a * c.a + gm.w * F.F;
+    dx_p[ROD_W][ROD_P_DELTA] = g.w * F.delta;
+    dx_p[ROD_W][ROD_P_EPSILON] = g.w * F.eps;
+    dx_p[ROD_PHI][ROD_P_ALPHA] = ga.phi_a * c.a + ga.phi * F.F;
+    dx_p[ROD_PHI][ROD_P_MU] = gm.phi_a * c.a + gm.phi * F.F;
+    dx_p[ROD_PHI][ROD_P_DELTA] = g.phi * F.delta;
+    dx_p[ROD_PHI][ROD_P_EPSILON] = g.phi * F.eps;
+}
+
+/* F_N = F (rod_normal_force). */
+static void normal_force_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+                                  double d_p[ROD_NP])
+{
+    const NormalForce F = normal_force(p, m, x);
+    d_x[ROD_Y] = F.y;
+    d_x[ROD_W] = F.w;
+    d_p[ROD_P_DELTA] = F.delta;
+    d_p[ROD_P_EPSILON] = F.eps;
+}
+
+/* F_T (rod_friction_force): 0 in flight; sg mu F while slipping; while
+ * sticking the force that holds v' = 0, F_T = (a + al sn cs F)/k, whence
+ *   dF_T/dtheta = (phi^2 sn + al (cs^2 - sn^2) F)/k - F_T (2 al sn cs)/k,
+ *   dF_T/dphi = -2 phi cs/k,  dF_T/d(y, w, delta, eps) = al sn cs dF/d(.)/k,
+ *   dF_T/dalpha = (sn cs F - F_T sn^2)/k,  dF_T/dmu = 0. */
+static void friction_force_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+                                    double d_p[ROD_NP])
+{
+    if (!m.contact) return;
+    const NormalForce F = normal_force(p, m, x);
+    if (m.slip != 0) {
+        const double smu = m.slip * p->mu;
+        d_x[ROD_Y] = smu * F.y;
+        d_x[ROD_W] = smu * F.w;
+        d_p[ROD_P_MU] = m.slip * F.F;
+        d_p[ROD_P_DELTA] = smu * F.delta;
+        d_p[ROD_P_EPSILON] = smu * F.eps;
+        return;
+    }
+    const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha;
+    const double sn = sin(th), cs = cos(th), k = 1 + al * sn * sn, ssc = al * sn * cs / k;
+    const double FT = rod_friction_force(p, m, x);
+    d_x[ROD_THETA] = (phi * phi * sn + al * (cs * cs - sn * sn) * F.F) / k - FT * 2 * al * sn * cs / k;
+    d_x[ROD_PHI] = -2 * phi * cs / k;
+    d_x[ROD_Y] = ssc * F.y;
+    d_x[ROD_W] = ssc * F.w;
+    d_p[ROD_P_ALPHA] = (sn * cs * F.F - FT * sn * sn) / k;
+    d_p[ROD_P_DELTA] = ssc * F.delta;
+    d_p[ROD_P_EPSILON] = ssc * F.eps;
+}
+
+/* energy (rod_energy) = (Xd^2 + Yd^2)/2 + phi^2/(2 al) + y + sn [+ (y/eps)^2/2 in contact],
+ * Xd = v + phi sn, Yd = w + phi cs (the centre of mass's velocity, eq coord):
+ *   dE/dv = Xd, dE/dw = Yd, dE/dy = 1 [+ y/eps^2],
+ *   dE/dtheta = phi (Xd cs - Yd sn) + cs, dE/dphi = Xd sn + Yd cs + phi/al,
+ *   dE/dalpha = -phi^2/(2 al^2), dE/deps = [-y^2/eps^3]. */
+static void energy_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+                            double d_p[ROD_NP])
+{
+    const double th = x[ROD_THETA], phi = x[ROD_PHI], y = x[ROD_Y], eps = p->epsilon, al = p->alpha;
+    const double sn = sin(th), cs = cos(th);
+    const double Xd = x[ROD_V] + phi * sn, Yd = x[ROD_W] + phi * cs;
+    d_x[ROD_V] = Xd;
+    d_x[ROD_W] = Yd;
+    d_x[ROD_Y] = 1 + (m.contact ? y / (eps * eps) : 0);
+    d_x[ROD_THETA] = phi * (Xd * cs - Yd * sn) + cs;
+    d_x[ROD_PHI] = Xd * sn + Yd * cs + phi / al;
+    d_p[ROD_P_ALPHA] = -0.5 * phi * phi / (al * al);
+    d_p[ROD_P_EPSILON] = m.contact ? -y * y / (eps * eps * eps) : 0;
+}
 
 void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d)
 {
-    memset(d, 0, sizeof *d);
+    memset(d, 0, sizeof *d);   /* every pair not written below is structurally 0 */
     rod_jacobian(p, m, x, d->dx_x);
+    derivatives_dp(p, m, x, d->dx_p);
+    normal_force_partials(p, m, x, d->out_x[ROD_OUT_F_N], d->out_p[ROD_OUT_F_N]);
+    friction_force_partials(p, m, x, d->out_x[ROD_OUT_F_T], d->out_p[ROD_OUT_F_T]);
+    energy_partials(p, m, x, d->out_x[ROD_OUT_ENERGY], d->out_p[ROD_OUT_ENERGY]);
 }

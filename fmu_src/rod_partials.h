@@ -1,11 +1,15 @@
-/* Analytic partial derivatives of the rod's right-hand side and outputs. */
+/* Analytic partial derivatives of the rod's smooth branches (issue #12):
+ * what fmi2GetDirectionalDerivative answers, for every (unknown, known) pair
+ * that modelDescription.xml's ModelStructure declares. Physics only, no FMI. */
 #ifndef ROD_PARTIALS_H
 #define ROD_PARTIALS_H
 
 #include "rod.h"
 
-enum { ROD_P_ALPHA, ROD_P_MU, ROD_P_DELTA, ROD_P_EPSILON, ROD_NP };
+enum { ROD_P_ALPHA, ROD_P_MU, ROD_P_DELTA, ROD_P_EPSILON, ROD_NP };      /* parameters */
 
+/* Partial derivatives of mode m's smooth branch at x: of the state derivatives and of the
+ * outputs, with respect to the states and to the parameters. */
 typedef struct {
     double dx_x[ROD_NX][ROD_NX], dx_p[ROD_NX][ROD_NP];
     double out_x[ROD_NOUT][ROD_NX], out_p[ROD_NOUT][ROD_NP];

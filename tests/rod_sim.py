@@ -32,13 +32,14 @@ def event_count(result):
     return int(np.sum(np.diff(result["time"]) == 0))
 
 
-def rod_energy(r, alpha, epsilon, contact=None):
-    """Energy of the rod and the contact spring, derived here from the states and the contact
-    flag (r's, unless given): the centre of mass is (x - cos theta, y + sin theta) (eq coord),
-    the moment of inertia 1/alpha; the spring holds 0.5 (y/eps)^2 only while it pushes."""
+def rod_energy(r, alpha, epsilon, contact):
+    """Energy of the rod and the contact spring, derived here from the states alone:
+    the centre of mass is (x - cos theta, y + sin theta) (eq coord), the moment of inertia 1/alpha.
+    The spring holds (y/eps)^2/2 only where `contact` (its force acts): after a damped
+    lift-off at y < 0 it is let go, so the energy is constant in free flight."""
     s, c, phi, y = np.sin(r["theta"]), np.cos(r["theta"]), r["phi"], r["y"]
     kinetic = 0.5 * ((r["v"] + phi * s) ** 2 + (r["w"] + phi * c) ** 2) + 0.5 * phi**2 / alpha
-    spring = np.where(r["contact"] if contact is None else contact, 0.5 * (y / epsilon) ** 2, 0.0)
+    spring = np.where(contact, 0.5 * (y / epsilon) ** 2, 0.0)
     return kinetic + (y + s) + spring
 
 
@@ -47,5 +48,5 @@ def energy_gradient(x, alpha, epsilon, contact):
     _, v, y, w, th, ph = x
     s, c = np.sin(th), np.cos(th)
     Xd, Yd = v + ph * s, w + ph * c
-    return np.array([0.0, Xd, 1 + (y / epsilon**2 if contact else 0), Yd, Xd * ph * c - Yd * ph * s + c,
+    return np.array([0.0, Xd, 1 + (y / epsilon**2 if contact else 0.0), Yd, Xd * ph * c - Yd * ph * s + c,
                      Xd * s + Yd * c + ph / alpha])

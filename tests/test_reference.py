@@ -119,15 +119,11 @@ def test_theorem2_both_implementations_put_the_rod_on_the_same_side_of_w1_star(f
 
 
 # --------------------------------------------------------------------- energy
-def energy(run, alpha, epsilon):
-    """rod_sim.rod_energy (the FMU's energy) along a recorded run: the spring counts except
-    strictly inside flight segments (an event state, recorded on both sides, keeps it)."""
-    flight = np.zeros(len(run.t), bool)
-    for mode, t0, t1, _ in run.segments:
-        if mode == FLIGHT:
-            flight |= (run.t > t0) & (run.t < t1)
-    states = dict(zip(("x", "v", "y", "w", "theta", "phi"), run.x))
-    return rod_sim.rod_energy(states, alpha, epsilon, contact=~flight)
+def energy(x, rod):
+    """rod_sim.rod_energy (the FMU's energy) of states x = (x, v, y, w, theta, phi) along axis 0,
+    the spring counted where its force acts (eq FN: y < 0 and g > 0)."""
+    contact = (x[2] < 0) & (-x[2] / rod.epsilon - rod.delta * x[3] > 0)
+    return rod_sim.rod_energy(dict(zip(("x", "v", "y", "w", "theta", "phi"), x)), rod.alpha, rod.epsilon, contact)
 
 
 STICK_STATES = [np.array([0.0, 0.0, -3e-7, w, th, ph]) for w in (-2e-3, 0.0, 1e-3)
@@ -143,12 +139,14 @@ def test_energy_rate_is_the_power_of_the_contact_forces(mode):
         if mode in (SLIP_FORWARD, SLIP_BACKWARD):
             x = x.copy()
             x[1] = 0.3 if mode == SLIP_FORWARD else -0.3
-        grad = rod_sim.energy_gradient(x, alpha, eps, contact=mode != FLIGHT)
-        F = (-x[2] / eps - delta * x[3]) / eps
-        if mode == FLIGHT:     # y < 0 without force (after lift-off): the spring has let go, nothing works
+        grad, F = rod_sim.energy_gradient(x, alpha, eps, contact=mode != FLIGHT), (-x[2] / eps - delta * x[3]) / eps
+        if mode == FLIGHT:     # y < 0 without force (after lift-off): the spring's energy was let go, none is lost
             power = 0.0
         else:
             power = -delta * x[3] ** 2 / eps - mu * F * abs(x[1])
+        states = dict(zip(("x", "v", "y", "w", "theta", "phi"), x))
+        assert rods["exact"].energy(x, mode) == pytest.approx(
+            rod_sim.rod_energy(states, alpha, eps, contact=mode != FLIGHT), rel=1e-15)
         exact = grad @ rods["exact"].rhs(mode)(0.0, x)
         assert exact == pytest.approx(power, rel=1e-9, abs=1e-9)
         if mode == STICK:
@@ -162,7 +160,7 @@ def test_energy_is_conserved_without_damping_and_friction(method):
     rod, rtol = Rod(mu=0.0, delta=0.0, epsilon=1e-3), 1e-8
     run = simulate(rod, [0, 1, 0, -0.5, 1.0, 0.5], 0.05, method=method, rtol=rtol, record=True)
     assert run.returned and run.touched                      # it hits the floor and bounces back
-    E = energy(run, rod.alpha, rod.epsilon)
+    E = energy(run.x, rod)
     assert np.max(np.abs(E - E[0])) <= 10 * rtol * E[0]
 
 
@@ -172,7 +170,7 @@ def test_energy_never_increases_through_an_iwc_with_the_exact_filippov_field(met
     rod, rtol = Rod(mu=3.0, delta=delta, epsilon=1e-3, filippov="exact"), 1e-8
     run = simulate(rod, [0, 1, 0, 0, 1.0, 0.5], 0.05, method=method, rtol=rtol, record=True)
     assert STICK in run.modes and run.returned
-    E = energy(run, rod.alpha, rod.epsilon)
+    E = energy(run.x, rod)
     assert np.max(np.diff(E)) <= 10 * rtol * E[0]
     assert E[-1] < E[0] - 0.1                                 # friction takes a visible share
 
@@ -187,7 +185,7 @@ def test_the_papers_sticking_field_gains_energy_the_exact_one_and_the_fmu_do_not
         run = simulate(rod, [0, 1, 0, 0, 1.0, 0.5], 0.05, method="Radau", rtol=1e-10, record=True)
         (t0, t1), = [(s[1], s[2]) for s in run.segments if s[0] == STICK]
         i0, i1 = np.searchsorted(run.t, t0), np.searchsorted(run.t, t1)
-        E = energy(run, rod.alpha, rod.epsilon)
+        E = energy(run.x, rod)
         gains[field] = E[i1] - E[i0]
         if field == "paper":
             rate = run.x[5] ** 3 * np.sin(run.x[4]) * np.cos(run.x[4])

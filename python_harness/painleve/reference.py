@@ -158,13 +158,14 @@ class Rod:
             return (-phi * phi * cs + self.alpha * sn * cs * F) / (1.0 + self.alpha * sn * sn)
         return _SLIP_SIGN.get(mode, 0) * self.mu * F
 
-    def energy(self, x):
+    def energy(self, x, mode):
         """Kinetic + gravitational + spring energy (the FMU's `energy`): centre of mass
-        (x - cos theta, y + sin theta), rotational energy phi^2/(2 alpha), spring (y/eps)^2/2 for y < 0."""
+        (x - cos theta, y + sin theta), rotational energy phi^2/(2 alpha), spring (y/eps)^2/2
+        while its force acts (mode not FLIGHT; after a damped lift-off y < 0 holds none)."""
         x = np.asarray(x, dtype=float)
         sn, cs, phi = np.sin(x[THETA]), np.cos(x[THETA]), x[PHI]
         Xd, Yd = x[V] + phi * sn, x[W] + phi * cs
-        spring = 0.5 * (np.minimum(x[Y], 0.0) / self.epsilon) ** 2
+        spring = 0.0 if mode == FLIGHT else 0.5 * (x[Y] / self.epsilon) ** 2
         return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / self.alpha + x[Y] + sn + spring
 
     # ------------------------------------------------------ right-hand sides

@@ -519,7 +519,7 @@ static void test_value_references(void)
     static const fmi2ValueReference CALCULATED[] = { VR_DER_X, VR_DER_PHI, VR_F_N, VR_F_T, VR_ENERGY };
     for (size_t k = 0; k < sizeof CALCULATED / sizeof CALCULATED[0]; ++k)
         EXPECT_IN(S_INSTANTIATED, fmi2Error, f->SetReal(c, &CALCULATED[k], 1, r));
-    /* Directional derivatives of anything but derivatives by states. */
+    /* Directional derivatives: no unknown reference, no known reference, a parameter known outside Initialization Mode. */
     const fmi2ValueReference der = VR_DER_W, state = VR_Y, bad = UINT_MAX, param = VR_EPSILON;
     EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, &bad, 1, &state, 1, r, r + 1));
     EXPECT_IN(S_EVENT, fmi2Error, f->GetDirectionalDerivative(c, &der, 1, &bad, 1, r, r + 1));
