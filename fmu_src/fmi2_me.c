@@ -8,7 +8,7 @@
 fmi2Status fmi2EnterEventMode(fmi2Component c)
 {
     BEGIN("fmi2EnterEventMode", SIMULATING);
-    INTERFACE("fmi2EnterEventMode", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2EnterEventMode", MODEL_EXCHANGE, "Model Exchange");
     in->state = EventMode;
     return fmi2OK;
 }
@@ -16,10 +16,10 @@ fmi2Status fmi2EnterEventMode(fmi2Component c)
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
 {
     BEGIN("fmi2NewDiscreteStates", EventMode);
-    INTERFACE("fmi2NewDiscreteStates", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2NewDiscreteStates", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi2NewDiscreteStates", info, "fmi2EventInfo is NULL");
     bool changed;
-    if (instance_event_update(in, "fmi2NewDiscreteStates", &changed) != fmi2OK) return fmi2Error;
+    if (instance_event_update(in, "fmi2NewDiscreteStates", &changed) != STATUS_OK) return fmi2Error;
     /* The model iterates its decisions to a fixpoint: one call settles them. */
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;
@@ -33,7 +33,7 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
 fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
 {
     BEGIN("fmi2EnterContinuousTimeMode", EventMode);
-    INTERFACE("fmi2EnterContinuousTimeMode", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2EnterContinuousTimeMode", MODEL_EXCHANGE, "Model Exchange");
     model_begin_integration(&in->model);
     in->state = ContinuousTimeMode;
     return fmi2OK;
@@ -44,7 +44,7 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStat
 {
     (void)noSetFMUStatePriorToCurrentPoint;
     BEGIN("fmi2CompletedIntegratorStep", ContinuousTimeMode);
-    INTERFACE("fmi2CompletedIntegratorStep", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2CompletedIntegratorStep", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi2CompletedIntegratorStep", enterEventMode && terminateSimulation, "an output pointer is NULL");
     *enterEventMode = fmi2False;
     *terminateSimulation = fmi2False;
@@ -54,7 +54,7 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStat
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
 {
     BEGIN("fmi2SetTime", SIMULATING);
-    INTERFACE("fmi2SetTime", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2SetTime", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi2SetTime", isfinite(time), "time = %g must be finite", time);
     in->time = time;
     return fmi2OK;
@@ -71,15 +71,9 @@ fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n
 {
     static const char call[] = "fmi2SetContinuousStates";
     BEGIN(call, ContinuousTimeMode);
-    INTERFACE(call, fmi2ModelExchange, "Model Exchange");
-    if (check_size(in, call, x, nx, MODEL_NX) != fmi2OK) return fmi2Error;
-    for (size_t i = 0; i < nx; ++i) {
-        const unsigned int vr = model_state_vr(i);
-        const char *reason = model_check(vr, x[i]);
-        const VariableInfo *info = model_variable(vr);
-        REQUIRE(call, !reason, "%s = %g %s at t = %g: allowed range is [%g, %g]", info->name, x[i], reason, in->time,
-                info->min, info->max);
-    }
+    INTERFACE(call, MODEL_EXCHANGE, "Model Exchange");
+    if (check_size(in, call, x, nx, MODEL_NX) != fmi2OK || instance_check_states(in, call, x) != STATUS_OK)
+        return fmi2Error;
     model_set_states(&in->model, x);
     return fmi2OK;
 }
@@ -98,21 +92,21 @@ static fmi2Status get_finite(Instance *in, const char *call, fmi2Real out[], siz
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
 {
     BEGIN("fmi2GetDerivatives", READABLE);
-    INTERFACE("fmi2GetDerivatives", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2GetDerivatives", MODEL_EXCHANGE, "Model Exchange");
     return get_finite(in, "fmi2GetDerivatives", derivatives, nx, MODEL_NX, model_get_derivatives, "derivative");
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t ni)
 {
     BEGIN("fmi2GetEventIndicators", READABLE);
-    INTERFACE("fmi2GetEventIndicators", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2GetEventIndicators", MODEL_EXCHANGE, "Model Exchange");
     return get_finite(in, "fmi2GetEventIndicators", z, ni, MODEL_NZ, model_get_indicators, "event indicator");
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 {
     BEGIN("fmi2GetContinuousStates", READABLE);
-    INTERFACE("fmi2GetContinuousStates", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2GetContinuousStates", MODEL_EXCHANGE, "Model Exchange");
     if (check_size(in, "fmi2GetContinuousStates", x, nx, MODEL_NX) != fmi2OK) return fmi2Error;
     model_get_states(&in->model, x);
     return fmi2OK;
@@ -121,7 +115,7 @@ fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real nominal[], size_t nx)
 {
     BEGIN("fmi2GetNominalsOfContinuousStates", Instantiated | READABLE);
-    INTERFACE("fmi2GetNominalsOfContinuousStates", fmi2ModelExchange, "Model Exchange");
+    INTERFACE("fmi2GetNominalsOfContinuousStates", MODEL_EXCHANGE, "Model Exchange");
     if (check_size(in, "fmi2GetNominalsOfContinuousStates", nominal, nx, MODEL_NX) != fmi2OK) return fmi2Error;
     model_get_nominals(&in->model, nominal);
     return fmi2OK;

@@ -54,12 +54,27 @@
 #define model_state_vr NAMESPACED(model_state_vr)
 #define model_variable NAMESPACED(model_variable)
 
-/* fmi2_common.c: the instance machinery of the FMI 2.0 files */
+/* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */
+#define instance_check_set NAMESPACED(instance_check_set)
+#define instance_check_states NAMESPACED(instance_check_states)
+#define instance_derivatives NAMESPACED(instance_derivatives)
 #define instance_discard NAMESPACED(instance_discard)
 #define instance_event_update NAMESPACED(instance_event_update)
 #define instance_fail NAMESPACED(instance_fail)
+#define instance_free_solver NAMESPACED(instance_free_solver)
+#define instance_get NAMESPACED(instance_get)
+#define instance_integrate NAMESPACED(instance_integrate)
+#define instance_log_categories NAMESPACED(instance_log_categories)
 #define instance_log_event NAMESPACED(instance_log_event)
 #define instance_model NAMESPACED(instance_model)
+#define instance_reset NAMESPACED(instance_reset)
+#define instance_set_logging NAMESPACED(instance_set_logging)
+#define instance_snapshot_deserialize NAMESPACED(instance_snapshot_deserialize)
+#define instance_snapshot_restore NAMESPACED(instance_snapshot_restore)
+#define instance_snapshot_serialize NAMESPACED(instance_snapshot_serialize)
+#define instance_snapshot_size NAMESPACED(instance_snapshot_size)
+#define instance_snapshot_take NAMESPACED(instance_snapshot_take)
+#define instance_start NAMESPACED(instance_start)
 #define instance_state_name NAMESPACED(instance_state_name)
 
 /* cosim.c: Co-Simulation's integrator */

@@ -110,7 +110,7 @@ def test_parameters_cannot_change_after_initialization(unzipdir):
     rod.initialize()
     with pytest.raises(FMICallException):
         rod.set(epsilon=1e-4)
-    assert "epsilon can be set only before fmi2ExitInitializationMode" in rod.messages[-1][2]
+    assert "epsilon can be set only before initialization ends" in rod.messages[-1][2]
     assert rod.get("epsilon") == [1e-3]
     rod.free()
 

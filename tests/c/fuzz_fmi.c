@@ -216,7 +216,8 @@ static void op_get(Slot *s, uint8_t which)
         break;
     case 1:
         if (CALL(s, true, f->GetInteger(c, v, n, null_arrays ? NULL : iv)) == fmi2OK && !null_arrays)
-            for (size_t k = 0; k < n; ++k) INVARIANT(iv[k] >= -1 && iv[k] <= 1, "mode = %d", iv[k]);
+            for (size_t k = 0; k < n; ++k)   /* mode in {-1, 0, 1}; the counters switches, sticks >= 0 */
+                INVARIANT(vr[k] == VR_MODE ? iv[k] >= -1 && iv[k] <= 1 : iv[k] >= 0, "Integer %u = %d", vr[k], iv[k]);
         break;
     case 2:
         if (CALL(s, true, f->GetBoolean(c, v, n, null_arrays ? NULL : bv)) == fmi2OK && !null_arrays)

@@ -1,0 +1,122 @@
+/* What an instance is under any FMI version: its state in the state machine,
+ * its log, its time, the model, and Co-Simulation's integrator. The FMI 2.0
+ * and 3.0 layers wrap it with their own callbacks and types; it knows the
+ * model interface (model.h) and no FMI header. Status codes are those both
+ * standards share (OK 0, Warning 1, Discard 2, Error 3). */
+#ifndef INSTANCE_H
+#define INSTANCE_H
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "model.h"
+
+typedef enum { STATUS_OK, STATUS_WARNING, STATUS_DISCARD, STATUS_ERROR } Status;
+
+typedef enum {
+    Instantiated = 1 << 0,
+    InitializationMode = 1 << 1,
+    EventMode = 1 << 2,
+    ContinuousTimeMode = 1 << 3, /* Model Exchange */
+    StepMode = 1 << 4,           /* Co-Simulation, initialized (FMI 2.0: slaveInitialized) */
+    Terminated = 1 << 5,
+    Error = 1 << 6,
+} InstanceState;
+
+#define ANY_STATE (Instantiated | InitializationMode | EventMode | ContinuousTimeMode | StepMode | Terminated | Error)
+#define BEFORE_INIT_ENDS (Instantiated | InitializationMode)
+
+typedef enum { MODEL_EXCHANGE, CO_SIMULATION } Interface;
+
+enum { LOG_EVENTS, LOG_WARNING, LOG_ERROR, LOG_ALL, N_LOG_CATEGORIES };
+
+typedef struct Instance Instance;
+
+/* The FMI layer's adapter to the importer's logger; `message` has no '%'
+ * that the importer could take for a format. */
+typedef void (*InstanceLogger)(const Instance *in, Status status, const char *category, const char *message);
+
+struct Instance {
+    char *name;
+    Interface interface;
+    InstanceState state;
+    InstanceLogger logger;
+    bool log_on[N_LOG_CATEGORIES];
+    double time;
+    Model model;
+    double tolerance;            /* the master's, else the DefaultExperiment's */
+    void *solver;                /* Co-Simulation's integrator, made on the first step */
+    bool solver_live;            /* the solver holds this trajectory at `time`: a step continues it */
+    double last_successful_time;
+};
+
+extern const char *const instance_log_categories[N_LOG_CATEGORIES];
+
+const char *instance_state_name(InstanceState s);
+
+/* A new instance's values: start values, Instantiated, time 0. */
+void instance_reset(Instance *in);
+
+/* Frees the integrator (the instance's memory is the FMI layer's). */
+void instance_free_solver(Instance *in);
+
+/* Sets the categories named (all if n is 0) on or off; STATUS_ERROR naming
+ * an unknown one. */
+Status instance_set_logging(Instance *in, const char *call, bool on, size_t n, const char *const categories[]);
+
+void instance_log_event(Instance *in, const char *fmt, ...);
+
+/* Logs "call: reason", enters the Error state, returns STATUS_ERROR. */
+Status instance_fail(Instance *in, const char *call, const char *fmt, ...);
+
+/* Logs "call: reason" as a warning and returns STATUS_DISCARD: a legal call
+ * the FMU cannot answer; the instance stays as it was. */
+Status instance_discard(Instance *in, const char *call, const char *fmt, ...);
+
+/* The model, with the initial mode decided while initializing. */
+Model *instance_model(Instance *in);
+
+/* Initialization ends: the initial mode and the event record (model_start). */
+void instance_start(Instance *in);
+
+/* The event update at the instance's time, logged. */
+Status instance_event_update(Instance *in, const char *call, bool *states_changed);
+
+/* ----------------------------------------------------------- variables */
+
+/* The value of variable vr if it has `type`; STATUS_ERROR naming it if not,
+ * or if its value is not finite. */
+Status instance_get(Instance *in, const char *call, unsigned int vr, VariableType type, double *value);
+
+/* Checks that vr is a settable variable of `type`, settable now, and that
+ * value is in its range (nothing is set). */
+Status instance_check_set(Instance *in, const char *call, unsigned int vr, VariableType type, double value);
+
+/* Checks a whole new vector of continuous states, naming the first bad one. */
+Status instance_check_states(Instance *in, const char *call, const double x[MODEL_NX]);
+
+/* sum_j d unknown_i / d known_j * seed_j for each i (directional), or, if
+ * adjoint, sum_i seed_i * d unknown_i / d known_j for each j; knowns are the
+ * states, and while initializing the parameters too. */
+Status instance_derivatives(Instance *in, const char *call, const unsigned int unknowns[], size_t n_unknowns,
+                            const unsigned int knowns[], size_t n_knowns, const double seed[], double out[],
+                            bool adjoint);
+
+/* ------------------------------------------------------ Co-Simulation */
+
+typedef enum {
+    THROUGH_EVENTS,     /* update at each event and go on to t_end */
+    RETURN_AFTER_EVENT, /* update at the first event and return there (early return) */
+    RETURN_AT_EVENT,    /* return at the first event, its update left to the master (event mode) */
+} StepPolicy;
+
+typedef enum { STEP_REACHED, STEP_EVENT } StepEnd;
+
+/* Integrates with the embedded CVODE from the instance's time towards t_end,
+ * events as the policy says (the instance's time is the event's where the
+ * step ends at one). STATUS_ERROR with a message if the solver fails or was
+ * not built in. */
+Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end);
+
+#endif

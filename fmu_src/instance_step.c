@@ -1,0 +1,77 @@
+/* A Co-Simulation step under any FMI version (instance.h): the embedded CVODE
+ * of cosim.c integrates the model, and each event it locates gets the same
+ * event update as in Model Exchange.
+ *
+ * CVODE continues from one step to the next (its history is the trajectory's:
+ * a communication point costs no restart) and restarts after events and
+ * wherever the trajectory may have been replaced: initialization, reset, FMU
+ * state get and set. So the FMU state is still just the model's. */
+#include <float.h>
+#include <math.h>
+
+#include "instance.h"
+
+#ifdef HAVE_CVODE
+#include "cosim.h"
+
+void instance_free_solver(Instance *in)
+{
+    cosim_free(in->solver);
+    in->solver = NULL;
+}
+
+static Status restart(Instance *in, const char *call)
+{
+    char err[512];
+    if (!cosim_start(in->solver, &in->model, in->time, in->tolerance, err, sizeof err))
+        return instance_fail(in, call, "%s", err);
+    model_begin_integration(&in->model);
+    in->solver_live = true;
+    return STATUS_OK;
+}
+
+Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+{
+    *end = STEP_REACHED;
+    if (!in->solver) in->solver = cosim_new();
+    if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
+    if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
+    /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
+    while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
+        char err[512];
+        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, err, sizeof err);
+        if (r == COSIM_FAILED) {
+            in->solver_live = false;
+            return instance_fail(in, call, "%s", err);
+        }
+        if (r == COSIM_REACHED) break;
+        in->solver_live = false;
+        if (policy == RETURN_AT_EVENT) {
+            *end = STEP_EVENT;
+            return STATUS_OK;
+        }
+        bool changed;
+        if (instance_event_update(in, call, &changed) != STATUS_OK || restart(in, call) != STATUS_OK)
+            return STATUS_ERROR;
+        if (policy == RETURN_AFTER_EVENT) {
+            *end = STEP_EVENT;
+            return STATUS_OK;
+        }
+    }
+    in->time = t_end;
+    return STATUS_OK;
+}
+#else
+void instance_free_solver(Instance *in)
+{
+    in->solver = NULL;
+}
+
+Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+{
+    (void)t_end, (void)policy;
+    *end = STEP_REACHED;
+    return instance_fail(in, call, "this binary was built without SUNDIALS CVODE: Co-Simulation is not available "
+                                   "(rebuild with libsundials-dev installed, or use Model Exchange)");
+}
+#endif
