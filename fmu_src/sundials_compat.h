@@ -3,7 +3,7 @@
  * communicator a context takes, and how errors are reported (6: a handler
  * per CVODE memory; 7: a stack of handlers on the context, whose default
  * prints on stderr). Everything else is written against SUNDIALS 7's names
- * (sunrealtype, SUN_COMM_NULL), which 6.4 has or gets here. */
+ * (sunrealtype, SUNComm, SUN_COMM_NULL), which 6.4 has or gets here. */
 #ifndef SUNDIALS_COMPAT_H
 #define SUNDIALS_COMPAT_H
 
@@ -40,7 +40,8 @@ static inline int sundials_catch_errors(SUNContext ctx, void *cvode, SundialsErr
                : -1;
 }
 #else
-#define SUN_COMM_NULL NULL /* 6: the context's communicator is a void * */
+typedef void *SUNComm; /* 6: the context's communicator is a void * */
+#define SUN_COMM_NULL NULL
 
 static inline void sundials_error_handler(int code, const char *module, const char *function, char *msg, void *error)
 {
