@@ -99,3 +99,33 @@ def test_the_native_driver_builds_and_runs_on_sundials_7(build7, fmu7):
     cases = [Case(epsilon=1e-4), Case(theta0=1.1, delta=2.0, epsilon=1e-5)]
     for case, row in zip(cases, run_native(build7 / "bench" / "native" / "painleve_native_me", fmu7, cases)):
         assert row["iwc"] and abs(row["w"] / case.v0 - case.e) < 3 * case.epsilon * math.log(1 / case.epsilon), row
+
+
+CVODE_FAILURE = """
+import sys, fmpy
+from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
+from painleve.instance import instantiate
+unzipdir = fmpy.extract(sys.argv[1])
+messages = []
+fmu = instantiate(unzipdir, read_model_description(unzipdir), lambda *m: messages.append(m), interface="CS")
+fmu.setupExperiment(tolerance=1e-30, startTime=0.0)
+fmu.enterInitializationMode()
+fmu.exitInitializationMode()
+try:
+    fmu.doStep(0.0, 0.1)
+except FMICallException:
+    print(messages[-1][2])
+"""
+
+
+@pytest.mark.parametrize("which", ["6", "7"])
+def test_cvodes_own_error_message_reaches_the_log_and_not_stderr(fmu7, fmu_path, which):
+    # A tolerance of 1e-30 is below what double precision resolves: CVODE refuses its first step with
+    # CV_TOO_MUCH_ACC (-2). SUNDIALS 6 hands the message to CVODE's error handler, 7 to the context's
+    # handler stack (whose default prints on stderr): both must end in the fmi2Error log message only.
+    r = subprocess.run([sys.executable, "-c", CVODE_FAILURE, fmu7 if which == "7" else fmu_path],
+                       capture_output=True, text=True)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    assert r.stdout.startswith("fmi2DoStep: CVODE failed at t = 0: CVode (-2): ")
+    assert "too much accuracy requested" in r.stdout
