@@ -33,14 +33,52 @@ apt_install() {
 # with the machine's cargo (rustup's), else Debian's cargo-web; bindgen needs libclang.
 FMI_SIM_VERSION=0.7.0
 TOOLS=$ROOT/.tools
+find_cargo() {
+    local cargo
+    cargo=$(command -v cargo || echo "$HOME/.cargo/bin/cargo")
+    if [ ! -x "$cargo" ]; then apt_install cargo-web; cargo=/usr/bin/cargo; fi
+    echo "$cargo"
+}
 importer_setup() {
     grep -qs "^\"fmi-sim $FMI_SIM_VERSION " "$TOOLS/.crates.toml" && return
     apt_install libclang-dev
     local cargo
-    cargo=$(command -v cargo || echo "$HOME/.cargo/bin/cargo")
-    if [ ! -x "$cargo" ]; then apt_install cargo-web; cargo=/usr/bin/cargo; fi
+    cargo=$(find_cargo)
     log "cargo install fmi-sim $FMI_SIM_VERSION into $TOOLS (about 5 minutes, once)"
     "$cargo" install --quiet --locked --version "$FMI_SIM_VERSION" --root "$TOOLS" fmi-sim
+}
+
+# SUNDIALS 7 for tests/test_sundials7.py (Debian 12 has 6): the sources that
+# the crates.io crate sundials-sys vendors (0.6.2: SUNDIALS 7.1.1), fetched
+# by cargo and built once, static, CVODE alone, into .tools/ (about 10 s).
+SUNDIALS_SYS_VERSION=0.6.2
+SUNDIALS7=$TOOLS/sundials-7.1
+sundials7_setup() {
+    local stamp="$SUNDIALS7/.from-sundials-sys-$SUNDIALS_SYS_VERSION"
+    [ -f "$stamp" ] && return
+    local cargo work src
+    cargo=$(find_cargo)
+    work=$(mktemp -d)
+    log "SUNDIALS 7 from crates.io sundials-sys $SUNDIALS_SYS_VERSION into $SUNDIALS7 (once)"
+    mkdir -p "$work/fetch/src"
+    printf '[package]\nname = "fetch-sundials"\nversion = "0.0.0"\nedition = "2021"\n[dependencies]\nsundials-sys = "=%s"\n' \
+        "$SUNDIALS_SYS_VERSION" >"$work/fetch/Cargo.toml"
+    : >"$work/fetch/src/lib.rs"
+    # Only this platform's dependencies are downloaded; cargo says where it unpacked the crate.
+    local platform; platform="$(uname -m)-unknown-linux-gnu"
+    "$cargo" fetch --quiet --manifest-path "$work/fetch/Cargo.toml" --target "$platform"
+    src=$("$cargo" metadata --quiet --format-version 1 --filter-platform "$platform" \
+        --manifest-path "$work/fetch/Cargo.toml" | python3 -c \
+        'import json, os, sys; print(next(os.path.dirname(p["manifest_path"]) for p in json.load(sys.stdin)["packages"] if p["name"] == "sundials-sys"))')/vendor
+    grep -q 'PACKAGE_VERSION_MAJOR "7"' "$src/CMakeLists.txt" || { log "$src is not SUNDIALS 7"; return 1; }
+    cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$SUNDIALS7" \
+        -DBUILD_SHARED_LIBS=OFF -DBUILD_STATIC_LIBS=ON -DCMAKE_POSITION_INDEPENDENT_CODE=ON \
+        -DBUILD_CVODE=ON -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDA=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
+        -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_ENABLE_CXX=OFF -DEXAMPLES_INSTALL=OFF >"$work/build.log" 2>&1 &&
+        cmake --build "$work/build" -j 2 >>"$work/build.log" 2>&1 && rm -rf "$SUNDIALS7" &&
+        cmake --install "$work/build" >>"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; return 1; }
+    touch "$stamp"
+    rm -rf "$work"
 }
 
 python_setup() {
@@ -61,6 +99,6 @@ setup() { apt_install "${APT_PACKAGES[@]}"; python_setup; build_fmu; }
 
 case "${1:-}" in
     main) setup; rc=0; "$VENV/bin/painleve" validate build/PainleveRod.fmu --report out/validation.md || rc=$?; "$VENV/bin/painleve" figures --out out/figures; printf '\nvalidation report: %s\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png; the numbers in figures.json, a summary in figures.md)\n' "$ROOT/out/validation.md" "$ROOT/out/figures/"; exit $rc ;;
-    test) setup; importer_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
+    test) setup; importer_setup; sundials7_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
     *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;
 esac

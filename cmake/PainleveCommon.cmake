@@ -1,6 +1,6 @@
 # What every build of PainleveRod's sources needs, in one place: the FMI 2.0
 # headers of the installed fmpy, the header made from modelDescription.xml
-# (the GUID's one home), and Debian's static SUNDIALS CVODE if it is there.
+# (the GUID's one home), and static SUNDIALS CVODE (Debian's, or SUNDIALS_ROOT's) if it is there.
 
 # FMI_HEADERS: fmpy's c-code directory (headers are never copied).
 function(painleve_find_fmi_headers)
@@ -43,22 +43,54 @@ function(painleve_generate_description_header MODEL_DESCRIPTION OUT_DIR)
   set(MD_SOURCES "${files}" PARENT_SCOPE)
 endfunction()
 
-# HAVE_SUNDIALS, SUNDIALS_INCLUDE_DIR, SUNDIALS_LIBRARIES: static CVODE, linked
-# so the binary needs nothing beyond libc and libm. WANTED off skips it.
+# HAVE_SUNDIALS, SUNDIALS_INCLUDE_DIR, SUNDIALS_LIBRARIES, SUNDIALS_VERSION:
+# static CVODE (SUNDIALS 6 or 7), linked so the binary needs nothing beyond
+# libc and libm. WANTED off skips it. Debian's libsundials-dev by default;
+# -DSUNDIALS_ROOT=PREFIX takes another install's include/ and lib/ instead
+# (e.g. .tools/sundials-7.1, which `bash run.sh test` builds).
 function(painleve_find_sundials WANTED)
+  set(SUNDIALS_ROOT "" CACHE PATH "prefix of the SUNDIALS to link (empty: the system's)")
+  # What was found for another root is not this root's.
+  if(NOT "${SUNDIALS_ROOT}" STREQUAL "${_PAINLEVE_SUNDIALS_ROOT_FOUND}")
+    unset(SUNDIALS_INCLUDE_DIR CACHE)
+    foreach(part cvode nvecserial sunlinsoldense sunmatrixdense generic core)
+      unset(SUNDIALS_${part} CACHE)
+    endforeach()
+    set(_PAINLEVE_SUNDIALS_ROOT_FOUND "${SUNDIALS_ROOT}" CACHE INTERNAL "")
+  endif()
+  set(where "")
+  if(SUNDIALS_ROOT)
+    set(where PATHS ${SUNDIALS_ROOT} NO_DEFAULT_PATH)
+  endif()
   set(have ${WANTED})
-  find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)
-  if(NOT SUNDIALS_INCLUDE_DIR)
+  find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h ${where} PATH_SUFFIXES include)
+  set(version "")
+  if(SUNDIALS_INCLUDE_DIR AND EXISTS ${SUNDIALS_INCLUDE_DIR}/sundials/sundials_config.h)
+    file(STRINGS ${SUNDIALS_INCLUDE_DIR}/sundials/sundials_config.h version REGEX "#define SUNDIALS_VERSION \"")
+    string(REGEX REPLACE ".*\"(.*)\".*" "\\1" version "${version}")
+  endif()
+  # SUNDIALS 7 moved the shared parts (contexts, errors) from sundials_generic to sundials_core.
+  if(version MATCHES "^[67]\\.")
+    set(shared generic)
+    if(version MATCHES "^7")
+      set(shared core)
+    endif()
+  else()
     set(have FALSE)
   endif()
   set(libraries "")
-  foreach(part cvode nvecserial sunlinsoldense sunmatrixdense generic)
-    find_library(SUNDIALS_${part} NAMES libsundials_${part}.a)
+  foreach(part cvode nvecserial sunlinsoldense sunmatrixdense ${shared})
+    find_library(SUNDIALS_${part} NAMES libsundials_${part}.a ${where} PATH_SUFFIXES lib lib64)
     if(NOT SUNDIALS_${part})
       set(have FALSE)
     endif()
     list(APPEND libraries ${SUNDIALS_${part}})
   endforeach()
+  if(SUNDIALS_ROOT AND WANTED AND NOT have)
+    message(FATAL_ERROR "SUNDIALS_ROOT=${SUNDIALS_ROOT} has no static SUNDIALS 6 or 7 CVODE (found version "
+                        "'${version}', headers ${SUNDIALS_INCLUDE_DIR}, libraries ${libraries})")
+  endif()
   set(HAVE_SUNDIALS ${have} PARENT_SCOPE)
+  set(SUNDIALS_VERSION "${version}" PARENT_SCOPE)
   set(SUNDIALS_LIBRARIES ${libraries} PARENT_SCOPE)
 endfunction()

@@ -1,5 +1,6 @@
-/* CVODE over the model (see cosim.h). Without HAVE_CVODE (SUNDIALS not
- * linked) this file is empty and Co-Simulation steps say so. */
+/* CVODE over the model (see cosim.h), SUNDIALS 6 or 7 (sundials_compat.h).
+ * Without HAVE_CVODE (SUNDIALS not linked) this file is empty and
+ * Co-Simulation steps say so. */
 #include "cosim.h"
 
 #ifdef HAVE_CVODE
@@ -14,6 +15,8 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "sundials_compat.h"
+
 /* A run of internal steps this long between two stops is a failure, not a wait. */
 #define MAX_STEPS_PER_ADVANCE 200000
 
@@ -23,11 +26,12 @@ struct CoSim {
     SUNMatrix A;
     SUNLinearSolver solver;
     void *cvode;
-    const Model *model; /* parameters and mode for the callbacks */
-    char message[256];  /* CVODE's last error */
+    const Model *model;  /* parameters and mode for the callbacks */
+    SundialsError error; /* CVODE's last error */
+    bool started;        /* cosim_start succeeded: cosim_advance may run */
 };
 
-static int rhs(realtype t, N_Vector y, N_Vector ydot, void *data)
+static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
 {
     (void)t;
     const Model *m = ((CoSim *)data)->model;
@@ -38,7 +42,7 @@ static int rhs(realtype t, N_Vector y, N_Vector ydot, void *data)
     return 0;
 }
 
-static int roots(realtype t, N_Vector y, realtype *z, void *data)
+static int roots(sunrealtype t, N_Vector y, sunrealtype *z, void *data)
 {
     (void)t;
     const Model *m = ((CoSim *)data)->model;
@@ -46,7 +50,7 @@ static int roots(realtype t, N_Vector y, realtype *z, void *data)
     return 0;
 }
 
-static int jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *data, N_Vector t1, N_Vector t2,
+static int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *data, N_Vector t1, N_Vector t2,
                     N_Vector t3)
 {
     (void)t, (void)fy, (void)t1, (void)t2, (void)t3;
@@ -58,59 +62,70 @@ static int jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *data
     return 0;
 }
 
-static void keep_error(int code, const char *module, const char *function, char *msg, void *data)
-{
-    CoSim *cs = data;
-    snprintf(cs->message, sizeof cs->message, "%s %s (%d): %s", module, function, code, msg);
-}
-
 CoSim *cosim_new(void)
 {
     return calloc(1, sizeof(CoSim));
 }
 
-void cosim_free(CoSim *cs)
+/* Frees whatever was made (all of it or part of a failed set-up), leaving an
+ * empty CoSim that the next cosim_start sets up afresh. */
+static void destroy(CoSim *cs)
 {
-    if (!cs) return;
     if (cs->cvode) CVodeFree(&cs->cvode);
     if (cs->solver) SUNLinSolFree(cs->solver);
     if (cs->A) SUNMatDestroy(cs->A);
     if (cs->y) N_VDestroy(cs->y);
     if (cs->abstol) N_VDestroy(cs->abstol);
-    if (cs->ctx) SUNContext_Free(&cs->ctx);
+    if (cs->ctx) SUNContext_Free(&cs->ctx); /* last: the others were made in it */
+    memset(cs, 0, sizeof *cs);
+}
+
+void cosim_free(CoSim *cs)
+{
+    if (!cs) return;
+    destroy(cs);
     free(cs);
 }
 
-static bool create(CoSim *cs, double t)
+/* Makes and configures CVODE; NULL on success, else the call that failed
+ * (what was made by then stays in cs for destroy). */
+static const char *create(CoSim *cs, double t)
 {
-    if (SUNContext_Create(NULL, &cs->ctx)) return false;
-    cs->y = N_VNew_Serial(MODEL_NX, cs->ctx);
-    cs->abstol = N_VNew_Serial(MODEL_NX, cs->ctx);
-    cs->A = SUNDenseMatrix(MODEL_NX, MODEL_NX, cs->ctx);
+    if (SUNContext_Create(SUN_COMM_NULL, &cs->ctx) != 0) return "SUNContext_Create";
     /* Adams, not BDF: between events the rod is smooth on the contact's own time
      * scale eps (stiff only across it), where Adams' higher orders (to 12, BDF 5)
      * run a case 1.1-1.9x faster, measured from delta = 0 to 100 and at
      * equal or smaller error; Newton with the Jacobian keeps large delta stable. */
-    cs->cvode = CVodeCreate(CV_ADAMS, cs->ctx);
-    if (!cs->y || !cs->abstol || !cs->A || !cs->cvode) return false;
-    cs->solver = SUNLinSol_Dense(cs->y, cs->A, cs->ctx);
-    return cs->solver && CVodeInit(cs->cvode, rhs, t, cs->y) == CV_SUCCESS &&
-           CVodeSetErrHandlerFn(cs->cvode, keep_error, cs) == CV_SUCCESS &&
-           CVodeSetUserData(cs->cvode, cs) == CV_SUCCESS &&
-           CVodeRootInit(cs->cvode, MODEL_NZ, roots) == CV_SUCCESS &&
-           CVodeSetLinearSolver(cs->cvode, cs->solver, cs->A) == CV_SUCCESS &&
-           CVodeSetJacFn(cs->cvode, jacobian) == CV_SUCCESS &&
-           CVodeSetMaxNumSteps(cs->cvode, MAX_STEPS_PER_ADVANCE) == CV_SUCCESS &&
-           CVodeSetNoInactiveRootWarn(cs->cvode) == CV_SUCCESS;
+    if (!(cs->cvode = CVodeCreate(CV_ADAMS, cs->ctx))) return "CVodeCreate";
+    if (sundials_catch_errors(cs->ctx, cs->cvode, &cs->error)) return "setting CVODE's error handler";
+    if (!(cs->y = N_VNew_Serial(MODEL_NX, cs->ctx))) return "N_VNew_Serial";
+    if (!(cs->abstol = N_VNew_Serial(MODEL_NX, cs->ctx))) return "N_VNew_Serial";
+    if (!(cs->A = SUNDenseMatrix(MODEL_NX, MODEL_NX, cs->ctx))) return "SUNDenseMatrix";
+    if (!(cs->solver = SUNLinSol_Dense(cs->y, cs->A, cs->ctx))) return "SUNLinSol_Dense";
+    N_VConst(0.0, cs->y); /* CVodeInit copies it; cosim_start sets the state */
+    if (CVodeInit(cs->cvode, rhs, t, cs->y) != CV_SUCCESS) return "CVodeInit";
+    if (CVodeSetUserData(cs->cvode, cs) != CV_SUCCESS) return "CVodeSetUserData";
+    if (CVodeRootInit(cs->cvode, MODEL_NZ, roots) != CV_SUCCESS) return "CVodeRootInit";
+    if (CVodeSetLinearSolver(cs->cvode, cs->solver, cs->A) != CV_SUCCESS) return "CVodeSetLinearSolver";
+    if (CVodeSetJacFn(cs->cvode, jacobian) != CV_SUCCESS) return "CVodeSetJacFn";
+    if (CVodeSetMaxNumSteps(cs->cvode, MAX_STEPS_PER_ADVANCE) != CV_SUCCESS) return "CVodeSetMaxNumSteps";
+    if (CVodeSetNoInactiveRootWarn(cs->cvode) != CV_SUCCESS) return "CVodeSetNoInactiveRootWarn";
+    return NULL;
 }
 
 bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n)
 {
     cs->model = m;
-    cs->message[0] = '\0';
-    if (!cs->cvode && !create(cs, t)) {
-        snprintf(err, n, "CVODE could not be set up: %s", cs->message[0] ? cs->message : "out of memory");
-        return false;
+    cs->started = false;
+    cs->error.text[0] = '\0';
+    if (!cs->cvode) { /* first start, or the last one failed and destroyed what it made */
+        const char *failed = create(cs, t);
+        if (failed) {
+            snprintf(err, n, "CVODE could not be set up: %s failed (%s)", failed,
+                     cs->error.text[0] ? cs->error.text : "out of memory");
+            destroy(cs);
+            return false;
+        }
     }
     double nominal[MODEL_NX];
     model_get_nominals(m, nominal);
@@ -118,20 +133,29 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
     model_get_states(m, y);
     for (int i = 0; i < MODEL_NX; ++i) abstol[i] = rtol * nominal[i];
     if (CVodeReInit(cs->cvode, t, cs->y) != CV_SUCCESS || CVodeSVtolerances(cs->cvode, rtol, cs->abstol) != CV_SUCCESS) {
-        snprintf(err, n, "CVODE could not restart at t = %g: %s", t, cs->message);
+        snprintf(err, n, "CVODE could not restart at t = %g: %s", t, cs->error.text);
         return false;
     }
+    cs->started = true;
     return true;
 }
 
 CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, char *err, size_t n)
 {
     cs->model = m;
-    realtype reached = *t;
-    CVodeSetStopTime(cs->cvode, t_end);
+    cs->error.text[0] = '\0';
+    if (!cs->started) {
+        snprintf(err, n, "CVODE is not set up (its last start failed)");
+        return COSIM_FAILED;
+    }
+    sunrealtype reached = *t;
+    if (CVodeSetStopTime(cs->cvode, t_end) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE refused the stop time %.17g: %s", t_end, cs->error.text);
+        return COSIM_FAILED;
+    }
     const int flag = CVode(cs->cvode, t_end, cs->y, &reached, CV_NORMAL);
     if (flag < 0) {
-        snprintf(err, n, "CVODE failed at t = %.17g: %s", reached, cs->message);
+        snprintf(err, n, "CVODE failed at t = %.17g: %s", reached, cs->error.text);
         return COSIM_FAILED;
     }
     model_set_states(m, N_VGetArrayPointer(cs->y));

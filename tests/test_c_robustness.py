@@ -2,12 +2,14 @@
 libFuzzer: tests/c is built with clang (its own CMake project, which compiles
 fmu_src itself), the driver exercises every FMI call against the dlopened
 library, the fuzz target runs for a bounded time, and any report fails.
+cvode_setup_faults fails each SUNDIALS call of Co-Simulation's set-up in turn.
 
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
 sources (to check that a planted bug is caught); FUZZ_SECONDS sets the fuzzing
 time (default 45)."""
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -71,6 +73,18 @@ def test_driver_finds_nothing_under_valgrind_memcheck(build):
                         build / "fmi_driver", "--cycles", "300"], timeout=300)
     assert_clean(code, output, "valgrind fmi_driver")
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
+
+
+def test_a_failed_cvode_set_up_frees_what_it_made_and_the_instance_recovers(build):
+    # cvode_setup_faults.c: each SUNDIALS call of Co-Simulation's set-up and restarts fails in turn
+    # (fail_sundials_call.c); fmi2Error naming the call, no leak, and after fmi2Reset the same IWC.
+    code, output = run(["valgrind", "--error-exitcode=99", "--leak-check=full", "--track-origins=yes",
+                        "--show-leak-kinds=definite,indirect,possible",
+                        "--errors-for-leak-kinds=definite,indirect,possible",
+                        build / "cvode_setup_faults"], timeout=300)
+    assert_clean(code, output, "valgrind cvode_setup_faults")
+    assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
+    assert re.search(r"CVODE failing at each of its \d+ SUNDIALS calls: \d+ checks, 0 failed", output), output[-3000:]
 
 
 def test_100000_instantiate_simulate_free_cycles_keep_memory_flat(build):

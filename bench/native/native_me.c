@@ -41,6 +41,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "fmu_import.h"
+#include "sundials_compat.h" /* fmu_src's: SUNDIALS 6 or 7 */
 
 #define MAX_EVENT_ITERATIONS 1000 /* fmi2NewDiscreteStates calls at one event */
 
@@ -81,7 +82,7 @@ typedef struct {
     SUNLinearSolver solver;
     void *cvode;
     int analytic;
-    char cvode_message[512];
+    SundialsError cvode_error; /* CVODE's last error */
     const char *failed_call; /* the FMI call a CVODE callback saw fail */
     double *nominal;
 } Driver;
@@ -96,13 +97,6 @@ static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status
     va_start(ap, message);
     vsnprintf(d->fmu_message, sizeof d->fmu_message, message, ap);
     va_end(ap);
-}
-
-static void keep_cvode_error(int code, const char *module, const char *function, char *msg, void *data)
-{
-    Driver *d = data;
-    if (code >= 0) return; /* warnings */
-    snprintf(d->cvode_message, sizeof d->cvode_message, "%s %s (%d): %s", module, function, code, msg);
 }
 
 #define OK(status) ((status) <= fmi2Warning)
@@ -208,7 +202,7 @@ static int find_variables(Driver *d, char *err, size_t n)
 static int create_cvode(Driver *d, char *err, size_t n)
 {
     const sunindextype nx = (sunindextype)d->fmu.nx;
-    if (SUNContext_Create(NULL, &d->ctx)) FAIL("SUNContext_Create failed");
+    if (SUNContext_Create(SUN_COMM_NULL, &d->ctx)) FAIL("SUNContext_Create failed");
     d->y = N_VNew_Serial(nx, d->ctx);
     d->abstol = N_VNew_Serial(nx, d->ctx);
     d->A = SUNDenseMatrix(nx, nx, d->ctx);
@@ -218,14 +212,13 @@ static int create_cvode(Driver *d, char *err, size_t n)
     if (!d->solver) FAIL("out of memory setting up CVODE's dense linear solver");
     N_VConst(0.0, d->y);
     N_VConst(1.0, d->abstol);
-    if (CVodeInit(d->cvode, rhs, 0.0, d->y) != CV_SUCCESS ||
-        CVodeSetErrHandlerFn(d->cvode, keep_cvode_error, d) != CV_SUCCESS ||
+    if (CVodeInit(d->cvode, rhs, 0.0, d->y) != CV_SUCCESS || sundials_catch_errors(d->ctx, d->cvode, &d->cvode_error) ||
         CVodeSetUserData(d->cvode, d) != CV_SUCCESS ||
         (d->fmu.nz > 0 && CVodeRootInit(d->cvode, (int)d->fmu.nz, roots) != CV_SUCCESS) ||
         CVodeSetLinearSolver(d->cvode, d->solver, d->A) != CV_SUCCESS ||
         (d->analytic && CVodeSetJacFn(d->cvode, jacobian) != CV_SUCCESS) ||
         CVodeSetNoInactiveRootWarn(d->cvode) != CV_SUCCESS)
-        FAIL("CVODE set-up failed: %s", d->cvode_message);
+        FAIL("CVODE set-up failed: %s", d->cvode_error.text);
     return 1;
 }
 
@@ -333,7 +326,7 @@ static int set_tolerances(Driver *d, double rtol, char *err, size_t n)
     CALL(GetNominalsOfContinuousStates, d->c, d->nominal, d->fmu.nx);
     double *abstol = N_VGetArrayPointer(d->abstol);
     for (size_t i = 0; i < d->fmu.nx; ++i) abstol[i] = rtol * d->nominal[i];
-    if (CVodeSVtolerances(d->cvode, rtol, d->abstol) != CV_SUCCESS) FAIL("CVodeSVtolerances: %s", d->cvode_message);
+    if (CVodeSVtolerances(d->cvode, rtol, d->abstol) != CV_SUCCESS) FAIL("CVodeSVtolerances: %s", d->cvode_error.text);
     return 1;
 }
 
@@ -355,7 +348,7 @@ static int run_case(Driver *d, const Case *k, double rtol, Result *r, char *err,
     const double *x = k->value, eps = x[EPSILON];
     const double horizon = horizon_of(k);
     const int have_horizon = isfinite(horizon) && horizon > 0;
-    d->fmu_message[0] = d->cvode_message[0] = '\0';
+    d->fmu_message[0] = d->cvode_error.text[0] = '\0';
     d->failed_call = NULL;
     memset(r, 0, sizeof *r);
 
@@ -374,14 +367,14 @@ static int run_case(Driver *d, const Case *k, double rtol, Result *r, char *err,
 
     /* fmpy's CVodeSolver: states and nominals from the FMU, abstol = rtol * nominal. */
     CALL(GetContinuousStates, d->c, N_VGetArrayPointer(d->y), d->fmu.nx);
-    if (CVodeReInit(d->cvode, 0.0, d->y) != CV_SUCCESS) FAIL("CVodeReInit: %s", d->cvode_message);
+    if (CVodeReInit(d->cvode, 0.0, d->y) != CV_SUCCESS) FAIL("CVodeReInit: %s", d->cvode_error.text);
     if (!set_tolerances(d, rtol, err, n)) return 0;
     /* fmpy: maxStep = (stop - start) / 50; at most 500 steps per output interval eps/2. */
     const double intervals = ceil(horizon / (eps / 2));
     const long max_steps = intervals < 1e9 / 500 ? 500L * (long)intervals : 1000000000L;
     if (CVodeSetMaxStep(d->cvode, horizon / 50) != CV_SUCCESS ||
         CVodeSetMaxNumSteps(d->cvode, max_steps) != CV_SUCCESS)
-        FAIL("CVODE options: %s", d->cvode_message);
+        FAIL("CVODE options: %s", d->cvode_error.text);
 
     int touched = 0, stuck = 0, back = 0;
     if (!observe(d, &touched, &stuck, &back, err, n)) return 0;
@@ -390,11 +383,11 @@ static int run_case(Driver *d, const Case *k, double rtol, Result *r, char *err,
     while (!back) {
         const int time_event = info.nextEventTimeDefined && info.nextEventTime < horizon;
         const double tout = time_event ? info.nextEventTime : horizon;
-        if (CVodeSetStopTime(d->cvode, tout) != CV_SUCCESS) FAIL("CVodeSetStopTime(%.17g): %s", tout, d->cvode_message);
+        if (CVodeSetStopTime(d->cvode, tout) != CV_SUCCESS) FAIL("CVodeSetStopTime(%.17g): %s", tout, d->cvode_error.text);
         const int flag = CVode(d->cvode, tout, d->y, &t, CV_NORMAL);
         if (flag < 0) {
             if (d->failed_call) return fmu_failed(d, d->failed_call, err, n);
-            FAIL("CVODE failed at t = %.17g: %s", t, d->cvode_message);
+            FAIL("CVODE failed at t = %.17g: %s", t, d->cvode_error.text);
         }
         CALL(SetTime, d->c, t);
         CALL(SetContinuousStates, d->c, N_VGetArrayPointer(d->y), d->fmu.nx);
@@ -410,7 +403,7 @@ static int run_case(Driver *d, const Case *k, double rtol, Result *r, char *err,
                 CALL(GetContinuousStates, d->c, N_VGetArrayPointer(d->y), d->fmu.nx);
             if (info.nominalsOfContinuousStatesChanged && !set_tolerances(d, rtol, err, n)) return 0;
             add_counts(d, &counts); /* CVodeReInit zeroes CVODE's counters */
-            if (CVodeReInit(d->cvode, t, d->y) != CV_SUCCESS) FAIL("CVodeReInit: %s", d->cvode_message);
+            if (CVodeReInit(d->cvode, t, d->y) != CV_SUCCESS) FAIL("CVodeReInit: %s", d->cvode_error.text);
             if (!observe(d, &touched, &stuck, &back, err, n)) return 0;
         } else if (t >= horizon) {
             FAIL("the rod did not come back to y = 0 by t = %.6g, the horizon (touched the floor: %s); is eps small "
