@@ -43,7 +43,7 @@ importer_setup() {
     "$cargo" install --quiet --locked --version "$FMI_SIM_VERSION" --root "$TOOLS" fmi-sim
 }
 
-# More test-only importers (tests/cosim_masters.py): libcosim and ecos from PyPI
+# More test-only importers (tests/other_importers.py): libcosim and ecos from PyPI
 # (tests/importers/requirements.txt; ecos's library needs Debian's libtbb12), FMI4j and
 # JavaFMI from Maven Central (tests/importers/jvm/pom.xml, compiled with the machine's
 # JDK and Maven, else Debian's).

@@ -1,6 +1,6 @@
 """Four more FMI 2.0 importers, installed by `bash run.sh test` from PyPI and Maven
 Central, run the default experiment (an IWC at eps = 1e-3, t = 0 .. 0.1, no start value
-changed) through Co-Simulation: libcosim, ecos, FMI4j, JavaFMI (tests/cosim_masters.py;
+changed) through Co-Simulation: libcosim, ecos, FMI4j, JavaFMI (tests/other_importers.py;
 docs/importers.md says why no Model Exchange).
 
 Each calls fmi2DoStep on fmpy's default grid, h = stop/500 = eps/5, and the FMU's own
@@ -17,7 +17,7 @@ import fmpy
 import numpy as np
 import pytest
 
-from cosim_masters import MASTERS
+from other_importers import MASTERS
 from painleve.experiment import Case, Experiment, outcome_of
 from rod_sim import OUTPUTS, phases, rod_energy
 

@@ -1,20 +1,24 @@
-"""Four Co-Simulation masters independent of fmpy, each running PainleveRod.fmu's
-default experiment (no start value changed) on a fixed communication grid.
+"""Four FMI 2.0 importers independent of fmpy, each running PainleveRod.fmu's default
+experiment (no start value changed) on a fixed communication grid.
 
+Co-Simulation masters (MASTERS):
 - libcosim (Open Simulation Platform, C++; PyPI libcosimpy): integer nanosecond time,
   one `step()` per communication step, outputs read by a last-value observer.
 - ecos (C++; PyPI ecospy): `step()` adds the step size to its time.
 - FMI4j (Kotlin over JNI; Maven Central info.laht.fmi4j) and JavaFMI (Java over JNA;
   Maven Central org.siani.javafmi): tests/importers/jvm, run by `java`.
+Model Exchange: FMI4j's instance under a forward Euler master written like fmpy's
+(run_fmi4j_euler; FMI4j ships no integrator).
 
 `bash run.sh test` installs them (tests/importers/requirements.txt, Debian's libtbb12
 for ecos, tests/importers/jvm/pom.xml). Each runner returns a structured array with
 fmpy's field names: time, the states, F_N, F_T, energy, mode, contact, one row per
-communication point from t = 0 (libcosim: from the first step's end, it initializes the
-FMU inside that step).
+communication point (Euler: per step) from t = 0 (libcosim: from the first step's end,
+it initializes the FMU inside that step).
 """
 import pathlib
 import subprocess
+import tempfile
 
 import fmpy
 import numpy as np
@@ -83,22 +87,33 @@ def run_ecos(fmu_path, stop_time, steps):
     return _table(rows)
 
 
-def run_jvm(importer, fmu_path, stop_time, steps):
-    """importer: 'fmi4j' or 'javafmi' (tests/importers/jvm/src/.../CoSimulate.java)."""
+def _java(main_class, *args):
+    """Runs a class of tests/importers/jvm; its CSV output as a table."""
     classes, jars = JVM / "classes", JVM / "dependency"
-    if not (classes / "painleve" / "importers" / "CoSimulate.class").exists():
+    if not (classes / "painleve" / "importers" / f"{main_class}.class").exists():
         raise FileNotFoundError(f"{classes} is missing: `bash run.sh test` builds tests/importers/jvm")
     # JavaFMI 2.24.3 calls java.util.prefs' private chmod through reflection (to make the
     # unpacked binary executable); JDK 17 allows that only when the package is opened.
-    cmd = ["java", "--add-opens", "java.prefs/java.util.prefs=ALL-UNNAMED",
-           "-cp", f"{classes}:{jars}/*", "painleve.importers.CoSimulate",
-           importer, str(fmu_path), repr(stop_time), str(steps)]
-    done = subprocess.run(cmd, capture_output=True, text=True)
+    # Both importers unpack (the FMU, FMI4j its JNI library) into java.io.tmpdir and leave it there.
+    with tempfile.TemporaryDirectory(prefix="jvm-importer-") as scratch:
+        cmd = ["java", "--add-opens", "java.prefs/java.util.prefs=ALL-UNNAMED", f"-Djava.io.tmpdir={scratch}",
+               "-cp", f"{classes}:{jars}/*", f"painleve.importers.{main_class}", *map(str, args)]
+        done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}): {done.stderr[-2000:]}")
     table = np.genfromtxt(done.stdout.splitlines(), delimiter=",", names=True)
     assert table.dtype.names == FIELDS, table.dtype.names
     return _table([tuple(row) for row in table])
+
+
+def run_jvm(importer, fmu_path, stop_time, steps):
+    """importer: 'fmi4j' or 'javafmi' (tests/importers/jvm/src/.../CoSimulate.java)."""
+    return _java("CoSimulate", importer, fmu_path, repr(stop_time), steps)
+
+
+def run_fmi4j_euler(fmu_path, stop_time, steps):
+    """Model Exchange: FMI4j's instance, forward Euler with h = stop_time/steps (ModelExchangeEuler.java)."""
+    return _java("ModelExchangeEuler", fmu_path, repr(stop_time), steps)
 
 
 MASTERS = {
