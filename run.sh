@@ -81,6 +81,21 @@ sundials7_setup() {
     rm -rf "$work"
 }
 
+# More test-only importers (tests/other_importers.py): libcosim and ecos from PyPI
+# (tests/importers/requirements.txt; ecos's library needs Debian's libtbb12), FMI4j and
+# JavaFMI from Maven Central (tests/importers/jvm/pom.xml, compiled with the machine's
+# JDK and Maven, else Debian's).
+more_importers_setup() {
+    apt_install libtbb12
+    log "pip install (pinned, tests/importers/requirements.txt)"
+    "$PY" -m pip install -q --disable-pip-version-check -r tests/importers/requirements.txt
+    command -v javac >/dev/null && command -v mvn >/dev/null || apt_install openjdk-17-jdk-headless maven
+    local jvm=tests/importers/jvm built=tests/importers/jvm/target/classes/painleve/importers/CoSimulate.class
+    [ -f "$built" ] && [ -z "$(find "$jvm/pom.xml" "$jvm/src" -newer "$built")" ] && return
+    log "mvn: FMI4j and JavaFMI (pinned, $jvm/pom.xml; about 15 s)"
+    mvn -q -B -Dstyle.color=never -f "$jvm/pom.xml" compile dependency:copy-dependencies
+}
+
 python_setup() {
     [ -x "$PY" ] || { log "creating $VENV"; python3 -m venv "$VENV"; }
     log "pip install (pinned, requirements.txt)"
@@ -99,6 +114,6 @@ setup() { apt_install "${APT_PACKAGES[@]}"; python_setup; build_fmu; }
 
 case "${1:-}" in
     main) setup; rc=0; "$VENV/bin/painleve" validate build/PainleveRod.fmu --report out/validation.md || rc=$?; "$VENV/bin/painleve" figures --out out/figures; printf '\nvalidation report: %s\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png; the numbers in figures.json, a summary in figures.md)\n' "$ROOT/out/validation.md" "$ROOT/out/figures/"; exit $rc ;;
-    test) setup; importer_setup; sundials7_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
+    test) setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
     *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;
 esac
