@@ -725,6 +725,7 @@ static void test_platform_and_version(void)
 /* The FMI 2.0.4 conformance table of both interfaces (conformance_*.c). */
 static void test_conformance(bool cosimulation)
 {
+    test_platform_and_version(); /* the two calls without an instance, allowed everywhere */
     if (!CHECK(cosimulation, "Co-Simulation is not in this build: the conformance table needs both interfaces"))
         return;
     test_conformance_null_instance();
@@ -762,7 +763,6 @@ int main(int argc, char **argv)
     printf("Co-Simulation %s\n", cosimulation ? "tested" : "not in this build: Model Exchange only");
     if (api_tests && conformance) test_conformance(cosimulation);
     if (api_tests && robustness) {
-        test_platform_and_version();
         test_null_arguments();
         test_value_references();
         test_nvr_zero_and_huge();
