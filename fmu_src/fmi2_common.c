@@ -197,7 +197,8 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     return fmi2OK;
 }
 
-/* Integer, Boolean and String variables are all outputs: none can be set. */
+/* Integer, Boolean and String variables are all outputs: none can be set.
+ * (Not allowed at all in Continuous-Time Mode, FMI 2.0.4 §3.2.3.) */
 static fmi2Status set_none(Instance *in, const char *call, const fmi2ValueReference vr[], size_t nvr,
                            const void *value, const char *type)
 {
@@ -209,19 +210,19 @@ static fmi2Status set_none(Instance *in, const char *call, const fmi2ValueRefere
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
 {
-    BEGIN("fmi2SetInteger", BEFORE_INIT_ENDS | SIMULATING | StepMode);
+    BEGIN("fmi2SetInteger", BEFORE_INIT_ENDS | EventMode | StepMode);
     return set_none(in, "fmi2SetInteger", vr, nvr, value, "Integer");
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[])
 {
-    BEGIN("fmi2SetBoolean", BEFORE_INIT_ENDS | SIMULATING | StepMode);
+    BEGIN("fmi2SetBoolean", BEFORE_INIT_ENDS | EventMode | StepMode);
     return set_none(in, "fmi2SetBoolean", vr, nvr, value, "Boolean");
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
 {
-    BEGIN("fmi2SetString", BEFORE_INIT_ENDS | SIMULATING | StepMode);
+    BEGIN("fmi2SetString", BEFORE_INIT_ENDS | EventMode | StepMode);
     return set_none(in, "fmi2SetString", vr, nvr, value, "String");
 }
 

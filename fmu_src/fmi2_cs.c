@@ -53,7 +53,7 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 
 /* Status queries (FMI 2.0.4 §4.2.3): steps are synchronous, so a status that
  * exists only for asynchronous steps is a legal question with no answer. */
-#define STATUS_STATES (StepMode | Terminated | Error)
+#define STATUS_STATES (StepMode | Terminated)
 #define STATUS_BEGIN(call)                                                 \
     BEGIN(call, STATUS_STATES);                                            \
     INTERFACE(call, CO_SIMULATION, "Co-Simulation");                    \

@@ -53,7 +53,7 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStat
 
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
 {
-    BEGIN("fmi2SetTime", SIMULATING);
+    BEGIN("fmi2SetTime", ContinuousTimeMode);   /* in Event Mode only for FMUs without states (§3.2.3) */
     INTERFACE("fmi2SetTime", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi2SetTime", isfinite(time), "time = %g must be finite", time);
     in->time = time;

@@ -5,7 +5,7 @@
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    BEGIN("fmi2GetFMUstate", ANY_STATE & ~Error);
+    BEGIN("fmi2GetFMUstate", ANY_STATE);
     REQUIRE("fmi2GetFMUstate", state, "FMUstate pointer is NULL");
     void *s = *state ? *state : CALLBACKS(in).allocateMemory(1, instance_snapshot_size());
     REQUIRE("fmi2GetFMUstate", s, "out of memory");

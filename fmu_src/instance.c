@@ -151,9 +151,13 @@ Status instance_check_set(Instance *in, const char *call, unsigned int vr, Varia
     const VariableInfo *info = variable_of(in, call, vr, type);
     if (!info) return STATUS_ERROR;
     if (!model_settable(info)) return instance_fail(in, call, "%s is calculated by the model and cannot be set", info->name);
-    if (!(in->state & BEFORE_INIT_ENDS))
-        return instance_fail(in, call, "%s can be set only before initialization ends (state is %s)", info->name,
-                             instance_state_name(in->state));
+    /* Parameters are fixed once initialization ends; continuous states may also
+     * be set between events (FMI 2.0.4 §3.2.3 condition 5). */
+    const InstanceState when = info->kind == KIND_STATE ? BEFORE_INIT_ENDS | ContinuousTimeMode : BEFORE_INIT_ENDS;
+    if (!(in->state & when))
+        return instance_fail(in, call, "%s can be set only %s (state is %s)", info->name,
+                             info->kind == KIND_STATE ? "before initialization ends or in Continuous-Time Mode"
+                                                      : "before initialization ends", instance_state_name(in->state));
     const char *reason = model_check(vr, value);
     if (reason)
         return instance_fail(in, call, "%s = %g %s: allowed range is [%g, %g]", info->name, value, reason, info->min,
@@ -185,11 +189,19 @@ Status instance_derivatives(Instance *in, const char *call, const unsigned int u
             return instance_fail(in, call, "known value reference %u is not a continuous state%s", knowns[j],
                                  initializing ? " nor a parameter" : " (parameters are knowns in Initialization Mode only)");
     }
+    /* Unknowns (FMI 2.0.4 §2.1.9): the Real outputs and derivatives, in
+     * Continuous-Time Mode the continuous ones (the discrete are frozen there);
+     * while initializing, the Real InitialUnknowns (what the model calculates,
+     * discrete outputs included; states and parameters are set, not unknown). */
     for (size_t i = 0; i < n_unknowns; ++i) {
         const VariableInfo *u = model_variable(unknowns[i]);
         if (!u || u->type != TYPE_REAL)
             return instance_fail(in, call, "unknown value reference %u is not a Real variable: directional derivatives "
                                  "are defined for Reals only", unknowns[i]);
+        const bool unknown = u->kind == KIND_CALCULATED || (u->kind == KIND_STATE && !initializing) ||
+                             (u->kind == KIND_DISCRETE && in->state != ContinuousTimeMode);
+        if (!unknown)
+            return instance_fail(in, call, "%s is not an unknown in %s", u->name, instance_state_name(in->state));
     }
     const size_t n_seed = adjoint ? n_unknowns : n_knowns, n_out = adjoint ? n_knowns : n_unknowns;
     for (size_t k = 0; k < n_seed; ++k)

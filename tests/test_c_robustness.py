@@ -4,6 +4,10 @@ fmu_src itself), the driver exercises every FMI call against the dlopened
 library, the fuzz target runs for a bounded time, and any report fails.
 cvode_setup_faults fails each SUNDIALS call of Co-Simulation's set-up in turn.
 
+The driver's conformance table (tests/c/conformance_*.c: every FMI 2.0 call in
+every state of both interfaces, to the letter of FMI 2.0.4) is its own test,
+apart from the robustness checks; valgrind runs both.
+
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
 sources (to check that a planted bug is caught); FUZZ_SECONDS sets the fuzzing
 time (default 45)."""
@@ -61,16 +65,26 @@ def assert_clean(code, output, what):
 
 
 def test_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build):
-    code, output = run([build / "fmi_driver_asan", "--cycles", "3000"], timeout=300)
+    code, output = run([build / "fmi_driver_asan", "--no-conformance", "--cycles", "3000"], timeout=300)
     assert_clean(code, output, "fmi_driver_asan")
     assert " 0 failed" in output
 
 
+def test_every_fmi2_call_in_every_state_answers_as_fmi_2_0_4_requires(build):
+    # The tables of FMI 2.0.4 sections 3.2.3 and 4.2.4, the status queries of 4.2.3,
+    # the Error state of 2.1.3 and the directional derivatives of 2.1.9 that
+    # modelDescription.xml's ModelStructure defines, under AddressSanitizer + UBSan.
+    code, output = run([build / "fmi_driver_asan", "--conformance-only"], timeout=300)
+    assert_clean(code, output, "fmi_driver_asan --conformance-only")
+    assert " 0 failed" in output
+
+
+VALGRIND = ["valgrind", "--error-exitcode=99", "--leak-check=full", "--track-origins=yes",
+            "--show-leak-kinds=definite,indirect,possible", "--errors-for-leak-kinds=definite,indirect,possible"]
+
+
 def test_driver_finds_nothing_under_valgrind_memcheck(build):
-    code, output = run(["valgrind", "--error-exitcode=99", "--leak-check=full", "--track-origins=yes",
-                        "--show-leak-kinds=definite,indirect,possible",
-                        "--errors-for-leak-kinds=definite,indirect,possible",
-                        build / "fmi_driver", "--cycles", "300"], timeout=300)
+    code, output = run([*VALGRIND, build / "fmi_driver", "--no-conformance", "--cycles", "300"], timeout=300)
     assert_clean(code, output, "valgrind fmi_driver")
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
 
@@ -85,6 +99,15 @@ def test_a_failed_cvode_set_up_frees_what_it_made_and_the_instance_recovers(buil
     assert_clean(code, output, "valgrind cvode_setup_faults")
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
     assert re.search(r"CVODE failing at each of its \d+ SUNDIALS calls: \d+ checks, 0 failed", output), output[-3000:]
+
+
+def test_conformance_calls_find_nothing_under_valgrind_memcheck(build):
+    # Memory only: whether each call answers as the standard requires is the test above
+    # (a failed check exits 1, valgrind's finding 99).
+    code, output = run([*VALGRIND, build / "fmi_driver", "--conformance-only"], timeout=300)
+    reports = [line for line in output.splitlines() if any(m in line for m in REPORT_MARKERS[:-1])]
+    assert code in (0, 1) and not reports, f"valgrind fmi_driver --conformance-only exited {code}:\n{output[-6000:]}"
+    assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
 
 
 def test_100000_instantiate_simulate_free_cycles_keep_memory_flat(build):

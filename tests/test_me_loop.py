@@ -50,7 +50,7 @@ def test_a_call_the_fmu_refuses_fails_the_step_not_silently(fmu_path):
     # states is not allowed: the solver's first right-hand side must stop CVode.
     loaded = LoadedFMU(fmu_path)
     try:
-        with pytest.raises(SimulationError, match="fmi2SetContinuousStates: not allowed in state EventMode"):
+        with pytest.raises(SimulationError, match="fmi2Set(Time|ContinuousStates): not allowed in state EventMode"):
             with loaded.fresh_run("a refused call") as fmu:
                 fmu.setupExperiment(tolerance=1e-6, startTime=0.0)
                 fmu.enterInitializationMode()

@@ -97,6 +97,8 @@ static void checking_logger(fmi2ComponentEnvironment env, fmi2String name, fmi2S
     va_start(ap, message);
     vsnprintf(harness.last_message, sizeof harness.last_message, message, ap);
     va_end(ap);
+    if (status == fmi2Error || status == fmi2Fatal)
+        memcpy(harness.last_error, harness.last_message, sizeof harness.last_error);
     if (getenv("HARNESS_PRINT_LOG")) fprintf(stderr, "[%s] %s: %s\n", category, name, harness.last_message);
 }
 

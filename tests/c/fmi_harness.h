@@ -43,6 +43,7 @@ typedef struct {
     long messages, error_messages;
     long bad_messages;   /* a NULL field, or a lone '%' (the FMU passes no varargs) */
     char last_message[512];
+    char last_error[512]; /* the last message logged with fmi2Error or fmi2Fatal */
     char last_bad[512];
 } HarnessCounts;
 

@@ -7,6 +7,8 @@
  *   - a log message with a lone '%' (the FMU passes its text unformatted);
  *   - an fmi2OK output that is NaN or infinite, a mode outside {-1, 0, 1};
  *   - a simulation call succeeding in the Error state without fmi2Reset;
+ *   - a status query (§4.2.3) answering fmi2OK where there is nothing to
+ *     report, or an fmi2Discard that changed the instance's state;
  *   - memory from allocateMemory still held after the instances are freed.
  *
  * Input format, one call at a time: an opcode byte (call = byte % N_OPS,
@@ -29,6 +31,7 @@
 #include <string.h>
 
 #include "fmi_harness.h"
+#include "model_structure.h"
 
 static FmiApi api;
 static const FmiApi *const f = &api;
@@ -335,6 +338,25 @@ static void op_debug_logging(Slot *s)
     CALL(s, true, f->SetDebugLogging(s->sim.c, take(&in) & 1, n, null_arrays ? NULL : cats));
 }
 
+/* A value reference for a directional derivative, from modelDescription.xml:
+ * mostly an unknown (an output, a derivative, an initial unknown) or a known
+ * (a state, a variable with initial = "exact") that some mode defines, often
+ * a pair that the current mode does not, sometimes an Integer or Boolean
+ * variable, sometimes far out. */
+static fmi2ValueReference take_dd_vr(Bytes *b, bool unknown)
+{
+    const uint8_t sel = take(b);
+    if (sel >= 224) return take_vr(b);
+    int candidates[64], n = 0;
+    for (int index = 1; index <= MD_N_VARIABLES && n < 64; ++index) {
+        bool defined = false;
+        for (int mode = MD_MODE_INIT; mode <= MD_MODE_STEP; ++mode)
+            defined |= unknown ? md_unknown_of_mode((MdMode)mode, index) != NULL : md_known_of_mode((MdMode)mode, index);
+        if (defined || sel >= 160) candidates[n++] = index;
+    }
+    return n ? md_var(candidates[sel % n])->vr : take_vr(b);
+}
+
 static void op_directional_derivative(Slot *s)
 {
     const long errors_before = harness.error_messages;
@@ -343,12 +365,11 @@ static void op_directional_derivative(Slot *s)
     bool null_u, null_k;
     const size_t nu = take_count(&in, &null_u), nk = take_count(&in, &null_k);
     for (size_t k = 0; k < CAP; ++k) {
-        /* Mostly derivatives by states, the pairs the FMU answers. */
-        const uint8_t sel = take(&in);
-        unknown[k] = sel < 200 ? VR_DER_X + sel % ROD_NX : take_vr(&in);
-        known[k] = sel < 200 ? VR_X + (sel >> 3) % ROD_NX : take_vr(&in);
+        unknown[k] = take_dd_vr(&in, true);
+        known[k] = take_dd_vr(&in, false);
         dv_known[k] = take_double(&in);
     }
+    /* Allowed in the Error state ("7" in both tables). */
     const fmi2Status st = CALL(s, true,
                                f->GetDirectionalDerivative(s->sim.c, null_u ? NULL : unknown, nu, null_k ? NULL : known,
                                                            nk, null_k ? NULL : dv_known, null_u ? NULL : dv_unknown));
@@ -362,7 +383,7 @@ static void fix_checksum(fmi2Byte *bytes, size_t n)
     if (n < 4) return;
     uint32_t h = 2166136261u;
     for (size_t k = 0; k < n - 4; ++k) h = (h ^ (uint8_t)bytes[k]) * 16777619u;
-    for (int k = 0; k < 4; ++k) bytes[n - 4 + k] = (fmi2Byte)(h >> 8 * k);
+    for (size_t k = 0; k < 4; ++k) bytes[n - 4 + k] = (fmi2Byte)(h >> 8 * k);
 }
 
 /* A byte for a serialized state: a length or count on an edge, or any byte. */
@@ -441,6 +462,56 @@ static fmi2Status do_step(Slot *s, double t, double h, fmi2Boolean no_set_prior)
     return st;
 }
 
+/* The status queries of FMI 2.0.4 §4.2.3. Steps are synchronous, so only
+ * fmi2LastSuccessfulTime (Real) and fmi2Terminated (Boolean) have an answer;
+ * any other query "cannot be retrieved by the slave" and returns fmi2Discard
+ * where the call is allowed (stepComplete, terminated), fmi2Error elsewhere
+ * (the Error state included). A query answered with fmi2Discard leaves the
+ * instance as it was: asked again, it answers fmi2Discard again. */
+static void op_status_query(Slot *s, uint8_t arg)
+{
+    const long errors_before = harness.error_messages;
+    fmi2Component c = s->sim.c;
+    const fmi2StatusKind kind = (fmi2StatusKind)(arg % 4);
+    const int which = arg >> 2 & 7;
+    fmi2Status value;
+    fmi2Real r;
+    fmi2Integer i;
+    fmi2Boolean b;
+    fmi2String str;
+    fmi2Status st;
+    bool has_answer = false;
+    switch (which) {
+    case 0: st = CALL(s, false, f->GetStatus(c, kind, &value)); break;
+    case 1:
+        st = CALL(s, false, f->GetRealStatus(c, kind, &r));
+        has_answer = kind == fmi2LastSuccessfulTime;
+        if (st == fmi2OK) INVARIANT(isfinite(r), "fmi2LastSuccessfulTime = %g", r);
+        break;
+    case 2: st = CALL(s, false, f->GetIntegerStatus(c, kind, &i)); break;
+    case 3:
+        st = CALL(s, false, f->GetBooleanStatus(c, kind, &b));
+        has_answer = kind == fmi2Terminated;
+        if (st == fmi2OK) INVARIANT(b == fmi2False || b == fmi2True, "fmi2Terminated = %d", b);
+        break;
+    case 4: st = CALL(s, false, f->GetStringStatus(c, kind, &str)); break;
+    default: CALL(s, false, f->GetStatus(c, kind, NULL)); return;
+    }
+    if (!c) return;
+    INVARIANT(s->cs || st == fmi2Error, "status query %d on a Model Exchange instance returned %d", which, (int)st);
+    INVARIANT(has_answer || st != fmi2OK, "status query %d of kind %d answered fmi2OK: there is nothing to report",
+              which, (int)kind);
+    if (st == fmi2Discard) {
+        const fmi2Status again = which == 0 ? f->GetStatus(c, kind, &value)
+                                 : which == 1 ? f->GetRealStatus(c, kind, &r)
+                                 : which == 2 ? f->GetIntegerStatus(c, kind, &i)
+                                 : which == 3 ? f->GetBooleanStatus(c, kind, &b)
+                                              : f->GetStringStatus(c, kind, &str);
+        INVARIANT(again == fmi2Discard, "a status query answered fmi2Discard, then %d: the first moved the instance",
+                  (int)again);
+    }
+}
+
 /* FMU state and Co-Simulation calls: optional, they must not crash or leak. */
 static void op_optional(Slot *s, uint8_t which)
 {
@@ -456,23 +527,7 @@ static void op_optional(Slot *s, uint8_t which)
         break;
     }
     case 3: CALL(s, false, f->CancelStep(c)); break;
-    case 4: {
-        fmi2Status st;
-        fmi2Real r;
-        fmi2Integer i;
-        fmi2Boolean b;
-        fmi2String str;
-        const fmi2StatusKind kind = (fmi2StatusKind)(arg % 4);
-        switch (arg >> 2 & 7) {
-        case 0: CALL(s, true, f->GetStatus(c, kind, &st)); break;
-        case 1: CALL(s, true, f->GetRealStatus(c, kind, &r)); break;
-        case 2: CALL(s, true, f->GetIntegerStatus(c, kind, &i)); break;
-        case 3: CALL(s, true, f->GetBooleanStatus(c, kind, &b)); break;
-        case 4: CALL(s, true, f->GetStringStatus(c, kind, &str)); break;
-        default: CALL(s, true, f->GetStatus(c, kind, NULL));
-        }
-        break;
-    }
+    case 4: op_status_query(s, arg); break;
     default: {
         const fmi2ValueReference vr = take_vr(&in);
         const fmi2Integer order = (int8_t)take(&in);
