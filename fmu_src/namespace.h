@@ -1,5 +1,6 @@
 /* The sources' external names, prefixed like the FMI functions when the FMU
- * is compiled with FMI2_FUNCTION_PREFIX (e.g. -DFMI2_FUNCTION_PREFIX=PainleveRod_):
+ * is compiled with FMI2_FUNCTION_PREFIX or FMI3_FUNCTION_PREFIX (e.g.
+ * -DFMI2_FUNCTION_PREFIX=PainleveRod_):
  * so the sources can be linked statically into one program beside another
  * FMU, or beside a copy of themselves with another prefix. Every function or
  * object that one source file gives another is listed here
@@ -7,10 +8,16 @@
 #ifndef NAMESPACE_H
 #define NAMESPACE_H
 
-#ifdef FMI2_FUNCTION_PREFIX
+#if defined(FMI2_FUNCTION_PREFIX)
+#define NAMESPACE_PREFIX FMI2_FUNCTION_PREFIX
+#elif defined(FMI3_FUNCTION_PREFIX)
+#define NAMESPACE_PREFIX FMI3_FUNCTION_PREFIX
+#endif
+
+#ifdef NAMESPACE_PREFIX
 #define NAMESPACE_PASTE_(a, b) a##b
 #define NAMESPACE_PASTE(a, b) NAMESPACE_PASTE_(a, b)
-#define NAMESPACED(name) NAMESPACE_PASTE(FMI2_FUNCTION_PREFIX, name)
+#define NAMESPACED(name) NAMESPACE_PASTE(NAMESPACE_PREFIX, name)
 
 /* rod.c, rod_partials.c: the physics */
 #define rod_coeffs NAMESPACED(rod_coeffs)

@@ -12,3 +12,12 @@ def fmu_path():
     if not path.exists():
         pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
     return str(path)
+
+
+@pytest.fixture(scope="session")
+def fmu3_path():
+    """The same model as an FMI 3.0 FMU."""
+    path = ROOT / "build" / "fmi3" / "PainleveRod.fmu"
+    if not path.exists():
+        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
+    return str(path)

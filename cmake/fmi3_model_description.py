@@ -1,0 +1,115 @@
+"""The FMI 3.0 model description of PainleveRod, made from the FMI 2.0 one (the
+variables', units', experiment's and dependencies' one home) at build time,
+and the FMI 3.0 source FMU's buildDescription.xml.
+
+    python3 fmi3_model_description.py FMI2_XML OUT_DIR SOURCE...
+
+FMI 3.0 names variables by type (Float64, Int32, Boolean), refers to them by
+value reference where FMI 2.0 used indices, and makes the event indicators
+and the independent variable `time` variables: they follow the model's own
+value references (fmu_src/fmi3_instance.h).
+"""
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+TYPES = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
+# The event indicators of fmu_src/rod.c, in order, as FMI 3.0 variables.
+INDICATORS = [
+    ("indicator_y", "y: the contact surface"),
+    ("indicator_g", "g = -y/eps - delta w: the compliant force's zero"),
+    ("indicator_slip", "v while slipping; a + q_+ F_N (forward fold) while sticking"),
+    ("indicator_aux", "a + q_- F_N (backward fold) while sticking; w in flight"),
+]
+INDICATOR_DEPENDENCIES = ["y", "y w", "v y w theta phi", "y w theta phi"]
+
+
+def convert(md2):
+    variables = md2.find("ModelVariables").findall("ScalarVariable")
+    vr_of_index = {i + 1: v.get("valueReference") for i, v in enumerate(variables)}
+    vr_of_name = {v.get("name"): v.get("valueReference") for v in variables}
+    me2, cs2 = md2.find("ModelExchange"), md2.find("CoSimulation")
+
+    root = ET.Element("fmiModelDescription", {
+        "fmiVersion": "3.0", "modelName": md2.get("modelName"), "instantiationToken": md2.get("guid"),
+        "description": md2.get("description"), "version": md2.get("version"),
+        "generationTool": md2.get("generationTool"), "variableNamingConvention": "structured"})
+    common = {"modelIdentifier": me2.get("modelIdentifier"), "needsExecutionTool": "false",
+              "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "true",
+              "canSerializeFMUState": "true", "providesDirectionalDerivatives": "true",
+              "providesAdjointDerivatives": "true", "providesPerElementDependencies": "false"}
+    ET.SubElement(root, "ModelExchange", {**common, "needsCompletedIntegratorStep": "false"})
+    if cs2 is not None:
+        ET.SubElement(root, "CoSimulation", {
+            **common, "canHandleVariableCommunicationStepSize": "true", "maxOutputDerivativeOrder": "0",
+            "providesIntermediateUpdate": "false", "mightReturnEarlyFromDoStep": "true",
+            "canReturnEarlyAfterIntermediateUpdate": "false", "hasEventMode": "true"})
+
+    types = ET.SubElement(root, "TypeDefinitions")
+    for simple in md2.find("TypeDefinitions"):
+        real = simple.find("Real")
+        ET.SubElement(types, "Float64Type", {"name": simple.get("name"), "description": simple.get("description"),
+                                             "quantity": real.get("quantity")})
+    categories = ET.SubElement(root, "LogCategories")
+    for category in md2.find("LogCategories"):
+        ET.SubElement(categories, "Category", dict(category.attrib))
+    ET.SubElement(root, "DefaultExperiment", dict(md2.find("DefaultExperiment").attrib))
+
+    out = ET.SubElement(root, "ModelVariables")
+    for v in variables:
+        typed = next(iter(v))
+        attrib = {k: v.get(k) for k in ("name", "valueReference", "description", "causality", "variability", "initial")
+                  if v.get(k) is not None}
+        for k in ("declaredType", "start", "min", "max", "nominal"):
+            if typed.get(k) is not None:
+                attrib[k] = typed.get(k)
+        if typed.get("derivative"):
+            attrib["derivative"] = vr_of_index[int(typed.get("derivative"))]
+        ET.SubElement(out, TYPES[typed.tag], attrib)
+    first = 1 + max(int(v.get("valueReference")) for v in variables)
+    ET.SubElement(out, "Float64", {"name": "time", "valueReference": str(first + len(INDICATORS)),
+                                   "causality": "independent", "variability": "continuous",
+                                   "description": "the paper's dimensionless time"})
+    for k, (name, description) in enumerate(INDICATORS):
+        ET.SubElement(out, "Float64", {"name": name, "valueReference": str(first + k), "description": description,
+                                       "causality": "local", "variability": "continuous"})
+
+    structure = ET.SubElement(root, "ModelStructure")
+    structure2 = md2.find("ModelStructure")
+    for tag2, tag3 in (("Outputs", "Output"), ("Derivatives", "ContinuousStateDerivative"),
+                       ("InitialUnknowns", "InitialUnknown")):
+        for unknown in structure2.find(tag2):
+            dependencies = " ".join(vr_of_index[int(i)] for i in unknown.get("dependencies").split())
+            ET.SubElement(structure, tag3, {"valueReference": vr_of_index[int(unknown.get("index"))],
+                                            "dependencies": dependencies})
+    for k, names in enumerate(INDICATOR_DEPENDENCIES):
+        ET.SubElement(structure, "EventIndicator", {
+            "valueReference": str(first + k), "dependencies": " ".join(vr_of_name[n] for n in names.split())})
+    return root
+
+
+def build_description(model_identifier, sources):
+    root = ET.Element("fmiBuildDescription", {"fmiVersion": "3.0"})
+    configuration = ET.SubElement(root, "BuildConfiguration", {"modelIdentifier": model_identifier})
+    files = ET.SubElement(configuration, "SourceFileSet", {"language": "C99"})
+    for source in sources:
+        ET.SubElement(files, "SourceFile", {"name": source})
+    return root
+
+
+def write(root, path):
+    ET.indent(root)
+    ET.ElementTree(root).write(path, encoding="UTF-8", xml_declaration=True)
+
+
+def main():
+    fmi2, out_dir, sources = Path(sys.argv[1]), Path(sys.argv[2]), sys.argv[3:]
+    md3 = convert(ET.parse(fmi2).getroot())
+    out_dir.mkdir(parents=True, exist_ok=True)
+    write(md3, out_dir / "modelDescription.xml")
+    write(build_description(md3.find("ModelExchange").get("modelIdentifier"), sources),
+          out_dir / "buildDescription.xml")
+
+
+if __name__ == "__main__":
+    main()
