@@ -60,63 +60,35 @@ fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
     return fmi2OK;
 }
 
-static fmi2Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)
-{
-    REQUIRE(call, array, "array is NULL");
-    REQUIRE(call, n == expected, "size %zu given, %s has %zu", n, MODEL_NAME, expected);
-    return fmi2OK;
-}
-
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx)
 {
-    static const char call[] = "fmi2SetContinuousStates";
-    BEGIN(call, ContinuousTimeMode);
-    INTERFACE(call, MODEL_EXCHANGE, "Model Exchange");
-    if (check_size(in, call, x, nx, MODEL_NX) != fmi2OK || instance_check_states(in, call, x) != STATUS_OK)
-        return fmi2Error;
-    model_set_states(&in->model, x);
-    return fmi2OK;
+    BEGIN("fmi2SetContinuousStates", ContinuousTimeMode);
+    INTERFACE("fmi2SetContinuousStates", MODEL_EXCHANGE, "Model Exchange");
+    return (fmi2Status)instance_set_states(in, "fmi2SetContinuousStates", x, nx);
 }
 
-/* Reads an array of the model at the current point after checking it is finite. */
-static fmi2Status get_finite(Instance *in, const char *call, fmi2Real out[], size_t n, size_t expected,
-                             void (*read)(Model *, double *), const char *what)
-{
-    if (check_size(in, call, out, n, expected) != fmi2OK) return fmi2Error;
-    read(instance_model(in), out);
-    for (size_t i = 0; i < n; ++i)
-        REQUIRE(call, isfinite(out[i]), "%s %zu is not finite at t = %g", what, i, in->time);
-    return fmi2OK;
-}
+/* The model's vectors, read and checked by the instance. */
+#define READ_ARRAY(call, allowed, which, out, n)         \
+    BEGIN(call, allowed);                               \
+    INTERFACE(call, MODEL_EXCHANGE, "Model Exchange");  \
+    return (fmi2Status)instance_read_array(in, call, which, out, n)
 
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
 {
-    BEGIN("fmi2GetDerivatives", READABLE);
-    INTERFACE("fmi2GetDerivatives", MODEL_EXCHANGE, "Model Exchange");
-    return get_finite(in, "fmi2GetDerivatives", derivatives, nx, MODEL_NX, model_get_derivatives, "derivative");
+    READ_ARRAY("fmi2GetDerivatives", READABLE, ARRAY_DERIVATIVES, derivatives, nx);
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t ni)
 {
-    BEGIN("fmi2GetEventIndicators", READABLE);
-    INTERFACE("fmi2GetEventIndicators", MODEL_EXCHANGE, "Model Exchange");
-    return get_finite(in, "fmi2GetEventIndicators", z, ni, MODEL_NZ, model_get_indicators, "event indicator");
+    READ_ARRAY("fmi2GetEventIndicators", READABLE, ARRAY_EVENT_INDICATORS, z, ni);
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 {
-    BEGIN("fmi2GetContinuousStates", READABLE);
-    INTERFACE("fmi2GetContinuousStates", MODEL_EXCHANGE, "Model Exchange");
-    if (check_size(in, "fmi2GetContinuousStates", x, nx, MODEL_NX) != fmi2OK) return fmi2Error;
-    model_get_states(&in->model, x);
-    return fmi2OK;
+    READ_ARRAY("fmi2GetContinuousStates", READABLE, ARRAY_STATES, x, nx);
 }
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real nominal[], size_t nx)
 {
-    BEGIN("fmi2GetNominalsOfContinuousStates", Instantiated | READABLE);
-    INTERFACE("fmi2GetNominalsOfContinuousStates", MODEL_EXCHANGE, "Model Exchange");
-    if (check_size(in, "fmi2GetNominalsOfContinuousStates", nominal, nx, MODEL_NX) != fmi2OK) return fmi2Error;
-    model_get_nominals(&in->model, nominal);
-    return fmi2OK;
+    READ_ARRAY("fmi2GetNominalsOfContinuousStates", Instantiated | READABLE, ARRAY_NOMINALS, nominal, nx);
 }

@@ -33,71 +33,39 @@ fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
     return fmi3OK;
 }
 
-static fmi3Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)
-{
-    REQUIRE(call, array, "array is NULL");
-    REQUIRE(call, n == expected, "size %zu given, %s has %zu", n, MODEL_NAME, expected);
-    return fmi3OK;
-}
-
 fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 continuousStates[],
                                    size_t nContinuousStates)
 {
-    static const char call[] = "fmi3SetContinuousStates";
-    BEGIN(call, ContinuousTimeMode);
-    if (check_size(in, call, continuousStates, nContinuousStates, MODEL_NX) != fmi3OK ||
-        instance_check_states(in, call, continuousStates) != STATUS_OK)
-        return fmi3Error;
-    model_set_states(&in->model, continuousStates);
-    return fmi3OK;
+    BEGIN("fmi3SetContinuousStates", ContinuousTimeMode);
+    return (fmi3Status)instance_set_states(in, "fmi3SetContinuousStates", continuousStates, nContinuousStates);
 }
 
-/* Reads an array of the model at the current point after checking it is finite. */
-static fmi3Status get_finite(Instance *in, const char *call, fmi3Float64 out[], size_t n, size_t expected,
-                             void (*read)(Model *, double *), const char *what)
-{
-    if (check_size(in, call, out, n, expected) != fmi3OK) return fmi3Error;
-    read(instance_model(in), out);
-    for (size_t i = 0; i < n; ++i)
-        REQUIRE(call, isfinite(out[i]), "%s %zu is not finite at t = %g", what, i, in->time);
-    return fmi3OK;
-}
+/* The model's vectors, read and checked by the instance. */
+#define READ_ARRAY(call, allowed, which, out, n)         \
+    BEGIN(call, allowed);                               \
+    INTERFACE(call, MODEL_EXCHANGE, "Model Exchange");  \
+    return (fmi3Status)instance_read_array(in, call, which, out, n)
 
 fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 derivatives[],
                                              size_t nContinuousStates)
 {
-    BEGIN("fmi3GetContinuousStateDerivatives", READABLE);
-    INTERFACE("fmi3GetContinuousStateDerivatives", MODEL_EXCHANGE, "Model Exchange");
-    return get_finite(in, "fmi3GetContinuousStateDerivatives", derivatives, nContinuousStates, MODEL_NX,
-                      model_get_derivatives, "derivative");
+    READ_ARRAY("fmi3GetContinuousStateDerivatives", READABLE, ARRAY_DERIVATIVES, derivatives, nContinuousStates);
 }
 
 fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[], size_t nEventIndicators)
 {
-    BEGIN("fmi3GetEventIndicators", READABLE);
-    INTERFACE("fmi3GetEventIndicators", MODEL_EXCHANGE, "Model Exchange");
-    return get_finite(in, "fmi3GetEventIndicators", eventIndicators, nEventIndicators, MODEL_NZ, model_get_indicators,
-                      "event indicator");
+    READ_ARRAY("fmi3GetEventIndicators", READABLE, ARRAY_EVENT_INDICATORS, eventIndicators, nEventIndicators);
 }
 
 fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[], size_t nContinuousStates)
 {
-    BEGIN("fmi3GetContinuousStates", READABLE);
-    INTERFACE("fmi3GetContinuousStates", MODEL_EXCHANGE, "Model Exchange");
-    if (check_size(in, "fmi3GetContinuousStates", continuousStates, nContinuousStates, MODEL_NX) != fmi3OK)
-        return fmi3Error;
-    model_get_states(&in->model, continuousStates);
-    return fmi3OK;
+    READ_ARRAY("fmi3GetContinuousStates", READABLE, ARRAY_STATES, continuousStates, nContinuousStates);
 }
 
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[], size_t nContinuousStates)
 {
-    BEGIN("fmi3GetNominalsOfContinuousStates", Instantiated | READABLE);
-    INTERFACE("fmi3GetNominalsOfContinuousStates", MODEL_EXCHANGE, "Model Exchange");
-    if (check_size(in, "fmi3GetNominalsOfContinuousStates", nominals, nContinuousStates, MODEL_NX) != fmi3OK)
-        return fmi3Error;
-    model_get_nominals(&in->model, nominals);
-    return fmi3OK;
+    READ_ARRAY("fmi3GetNominalsOfContinuousStates", Instantiated | READABLE, ARRAY_NOMINALS, nominals,
+               nContinuousStates);
 }
 
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)

@@ -165,8 +165,33 @@ Status instance_check_set(Instance *in, const char *call, unsigned int vr, Varia
     return STATUS_OK;
 }
 
-Status instance_check_states(Instance *in, const char *call, const double x[MODEL_NX])
+static Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)
 {
+    if (!array) return instance_fail(in, call, "array is NULL");
+    if (n != expected) return instance_fail(in, call, "size %zu given, %s has %zu", n, MODEL_NAME, expected);
+    return STATUS_OK;
+}
+
+Status instance_read_array(Instance *in, const char *call, ModelArray which, double out[], size_t n)
+{
+    static const char *const NAME[] = { "state", "derivative", "event indicator", "nominal" };
+    const size_t expected = which == ARRAY_EVENT_INDICATORS ? MODEL_NZ : MODEL_NX;
+    if (check_size(in, call, out, n, expected) != STATUS_OK) return STATUS_ERROR;
+    Model *m = instance_model(in);
+    switch (which) {
+    case ARRAY_STATES: model_get_states(m, out); break;
+    case ARRAY_DERIVATIVES: model_get_derivatives(m, out); break;
+    case ARRAY_EVENT_INDICATORS: model_get_indicators(m, out); break;
+    case ARRAY_NOMINALS: model_get_nominals(m, out); break;
+    }
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(out[i])) return instance_fail(in, call, "%s %zu is not finite at t = %g", NAME[which], i, in->time);
+    return STATUS_OK;
+}
+
+Status instance_set_states(Instance *in, const char *call, const double x[], size_t n)
+{
+    if (check_size(in, call, x, n, MODEL_NX) != STATUS_OK) return STATUS_ERROR;
     for (size_t i = 0; i < MODEL_NX; ++i) {
         const unsigned int vr = model_state_vr(i);
         const char *reason = model_check(vr, x[i]);
@@ -175,6 +200,7 @@ Status instance_check_states(Instance *in, const char *call, const double x[MODE
             return instance_fail(in, call, "%s = %g %s at t = %g: allowed range is [%g, %g]", info->name, x[i], reason,
                                  in->time, info->min, info->max);
     }
+    model_set_states(&in->model, x);
     return STATUS_OK;
 }
 

@@ -93,8 +93,15 @@ Status instance_get(Instance *in, const char *call, unsigned int vr, VariableTyp
  * value is in its range (nothing is set). */
 Status instance_check_set(Instance *in, const char *call, unsigned int vr, VariableType type, double value);
 
-/* Checks a whole new vector of continuous states, naming the first bad one. */
-Status instance_check_states(Instance *in, const char *call, const double x[MODEL_NX]);
+/* The model's vectors that Model Exchange reads. */
+typedef enum { ARRAY_STATES, ARRAY_DERIVATIVES, ARRAY_EVENT_INDICATORS, ARRAY_NOMINALS } ModelArray;
+
+/* Reads vector `which` into out[n]; STATUS_ERROR if out is NULL, n is not its
+ * size, or a value is not finite. */
+Status instance_read_array(Instance *in, const char *call, ModelArray which, double out[], size_t n);
+
+/* Sets the continuous states to x[n], all checked first (size, each range). */
+Status instance_set_states(Instance *in, const char *call, const double x[], size_t n);
 
 /* sum_j d unknown_i / d known_j * seed_j for each i (directional), or, if
  * adjoint, sum_i seed_i * d unknown_i / d known_j for each j; knowns are the

@@ -63,7 +63,6 @@
 
 /* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */
 #define instance_check_set NAMESPACED(instance_check_set)
-#define instance_check_states NAMESPACED(instance_check_states)
 #define instance_derivatives NAMESPACED(instance_derivatives)
 #define instance_discard NAMESPACED(instance_discard)
 #define instance_event_update NAMESPACED(instance_event_update)
@@ -74,8 +73,10 @@
 #define instance_log_categories NAMESPACED(instance_log_categories)
 #define instance_log_event NAMESPACED(instance_log_event)
 #define instance_model NAMESPACED(instance_model)
+#define instance_read_array NAMESPACED(instance_read_array)
 #define instance_reset NAMESPACED(instance_reset)
 #define instance_set_logging NAMESPACED(instance_set_logging)
+#define instance_set_states NAMESPACED(instance_set_states)
 #define instance_snapshot_deserialize NAMESPACED(instance_snapshot_deserialize)
 #define instance_snapshot_restore NAMESPACED(instance_snapshot_restore)
 #define instance_snapshot_serialize NAMESPACED(instance_snapshot_serialize)
