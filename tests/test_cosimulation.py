@@ -182,3 +182,37 @@ def test_without_a_tolerance_cosimulation_uses_the_default_experiments(unzipdir)
     assert np.array_equal(runs[None], runs[default])
     assert not np.array_equal(runs[default], runs[default / 100])
     np.testing.assert_allclose(runs[default / 100], runs[default], rtol=1e-4)
+
+
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_a_flat_fast_spin_runs_to_the_end_at_the_default_tolerance(fmu_path, fmi_type):
+    # Launched flat (theta = 0, w = 0) spinning at phi = 3e3: v changes sign every half turn, so the
+    # slip direction in flight switches again and again; the old guard (100 events within eps^2)
+    # stopped Model Exchange at fmpy's default tolerance. The spin's energy, 6e6, is kept to the
+    # solver's error (BDF's phase error over five fast turns).
+    r = fmpy.simulate_fmu(fmu_path, fmi_type=fmi_type, start_values=dict(theta=0.0, phi=3e3, y=0.0, w=0.0, v=0.0),
+                          stop_time=0.01, output=["switches", "energy"])
+    assert r["time"][-1] == pytest.approx(0.01) and r["switches"][-1] >= 10
+    assert r["energy"][-1] <= r["energy"][0] * (1 + 1e-5)
+
+
+def test_a_faster_flat_spin_slides_on_the_contact_boundary_and_ends_as_a_zeno_run(fmu_path):
+    # At phi = 1e4 the end rests on y = 0 with b < 0 for t < 1/phi^3 = 1e-12 while F_N = 0: contact and
+    # flight both push the state onto g = 0 (a sliding motion on the force's boundary), which
+    # event-driven modes can only chatter across, at ~5e-16 a switch. The guard ends it, saying so.
+    messages = []
+    with pytest.raises(FMICallException):
+        fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", start_values=dict(theta=0.0, phi=1e4, y=0.0, w=0.0, v=0.0),
+                          stop_time=0.01, logger=lambda *m: messages.append(m[-1].decode()))
+    assert any("without progress in time (a Zeno run" in m and "g = -y/eps" in m for m in messages), messages[-3:]
+
+
+def test_a_stiffly_damped_soft_contact_runs_to_the_end_alike_in_both_interfaces(fmu_path):
+    # delta = 1000, eps = 0.3 (far outside the asymptotics, where stick and slip were seen to
+    # ping-pong at a fold): compression, stick, slip, flight, the same in both interfaces.
+    runs = [fmpy.simulate_fmu(fmu_path, fmi_type=t, start_values=dict(delta=1000.0, epsilon=0.3), stop_time=2.0,
+                              relative_tolerance=1e-8, output=["switches", "energy"])
+            for t in ("ModelExchange", "CoSimulation")]
+    assert runs[0]["switches"][-1] == runs[1]["switches"][-1] >= 3
+    for r in runs:
+        assert np.max(np.diff(r["energy"])) <= 1e-8 * r["energy"][0] and r["time"][-1] == pytest.approx(2.0)
