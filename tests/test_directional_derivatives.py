@@ -1,20 +1,14 @@
 """fmi2GetDirectionalDerivative against central finite differences of the derivatives, in every mode."""
 from ctypes import POINTER, c_double
 
-import fmpy
 import numpy as np
 import pytest
 
-from me_driver import Rod
+from painleve.experiment import STATES
+from raw_instances import Rod
 
-STATES = ["x", "v", "y", "w", "theta", "phi"]
 DERS = [f"der({s})" for s in STATES]
 _P = POINTER(c_double)
-
-
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
 def derivatives(rod, x):
@@ -52,9 +46,9 @@ MODES = {
 
 
 @pytest.mark.parametrize("name", MODES)
-def test_directional_derivatives_match_central_differences(unzipdir, name):
+def test_directional_derivatives_match_central_differences(loaded, name):
     start, expected_mode = MODES[name]
-    rod = Rod(unzipdir)
+    rod = Rod(loaded)
     rod.initialize(**start)
     assert (bool(rod.fmu.getBoolean([rod.vr["contact"]])[0]), rod.fmu.getInteger([rod.vr["mode"]])[0]) == expected_mode
     nominal = np.zeros(6)

@@ -21,6 +21,7 @@ Arguments outside a theorem's hypotheses raise :class:`HypothesisError`.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,7 +35,7 @@ __all__ = [
     "slip_compression_end", "e_closed_form", "e_integrated", "e",
     "e_large_delta", "e_large_delta_rod", "e_small_delta", "e_zero",
     "phi_after_iwc", "iwc_time_scale", "w1_star",
-    "check_theorem1", "check_theorem2",
+    "check_theorem1", "check_theorem2", "Prediction", "predict", "check_case", "theorem_of",
 ]
 
 ALPHA = 3.0  # uniform rod
@@ -470,3 +471,54 @@ def w1_star(theta0, phi0, delta, *, alpha=ALPHA, mu=MU):
     pp = _p(th, 1.0, al, m)
     lm = _lam(pp, _f(delta))[1]
     return _out(-lm * (-1.0 + _f(phi0) ** 2 * np.sin(th)) / pp)  # eq w1star
+
+
+# ------------------------------------------------------------ one case's predictions
+@dataclass(frozen=True)
+class Prediction:
+    """What the paper predicts for one IWC case (eps -> 0)."""
+    theorem: int            # 1 (inconsistent quadrant, b < 0) or 2 (indeterminate, b > 0)
+    e: float                # w/v0 at the return to y = 0 after IWC (Proposition prop:stick)
+    phi: float              # phi there (Theorem 1, eq expr)
+    lambda_plus: float      # the unstable eigenvalue of slipping compression (eq lambdapm)
+    time_scale: float       # eps ln(1/eps)/lambda_+: the IWC's duration up to O(eps) (eq TT)
+    w1_star: float          # Theorem 2's separatrix in w10 (eq w1star); NaN for Theorem 1
+    iwc: bool               # Theorem 1, or Theorem 2 below the separatrix (None if w1* is undefined)
+
+
+def theorem_of(case):
+    """1 if the case starts in the inconsistent quadrant (b < 0), else 2."""
+    return 1 if b(case.theta0, case.phi0) < 0 else 2
+
+
+def check_case(case):
+    """Raises HypothesisError, naming the hypothesis, unless Theorem 1 or 2 covers the Case."""
+    if not (case.epsilon > 0 and np.isfinite(case.epsilon)):
+        raise HypothesisError(f"epsilon must be > 0; got {case.epsilon}")
+    theorem = theorem_of(case)
+    check = check_theorem1 if theorem == 1 else check_theorem2
+    check(case.theta0, case.phi0, case.v0, alpha=case.alpha, mu=case.mu, delta=case.delta)
+    if theorem == 2 and not case.w10 < 0:
+        raise HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {case.w10}")
+
+
+def _or_nan(formula):
+    """formula(), or NaN where the hypotheses of the result it evaluates fail."""
+    try:
+        return float(formula())
+    except (ValueError, ArithmeticError):
+        return np.nan
+
+
+@functools.lru_cache(maxsize=4096)
+def predict(case):
+    """The paper's predictions for a Case, NaN where a result's hypotheses fail (see
+    check_case); computed once per case, since a sweep asks for each several times."""
+    rod = dict(alpha=case.alpha, mu=case.mu)
+    theorem = theorem_of(case)
+    w1s = np.nan if theorem == 1 else _or_nan(lambda: w1_star(case.theta0, case.phi0, case.delta, **rod))
+    return Prediction(theorem=theorem, e=_or_nan(lambda: e(case.delta, case.theta0, **rod)),
+                      phi=_or_nan(lambda: phi_after_iwc(case.theta0, case.phi0, case.v0, case.delta, **rod)),
+                      lambda_plus=_or_nan(lambda: lambda_pm(case.theta0, case.delta, **rod)[0]),
+                      time_scale=_or_nan(lambda: iwc_time_scale(case.epsilon, case.theta0, case.delta, **rod)),
+                      w1_star=w1s, iwc=None if theorem == 2 and np.isnan(w1s) else theorem == 1 or case.w10 < w1s)

@@ -22,6 +22,7 @@ import zipfile
 from .report import to_json
 
 DEFAULT_FMU = "build/PainleveRod.fmu"
+FMI_TYPES = {"ME": "ModelExchange", "CS": "CoSimulation"}     # --interface's names, fmpy's
 DEFAULTS = dict(theta0=1.0, phi0=0.5, v0=1.0, delta=1.0, epsilon=1e-3, w10=0.0, alpha=3.0, mu=3.0)
 
 
@@ -93,12 +94,15 @@ def count(text):
 
 
 def fmu_file(path):
-    """The FMU to use, checked so that a wrong path ends in one line saying what to do."""
-    given = path or os.environ.get("PAINLEVE_FMU") or DEFAULT_FMU
+    """The FMU to use (--fmu, else $PAINLEVE_FMU, else the one installed with the package, else
+    build/PainleveRod.fmu), checked so that a wrong path ends in one line saying what to do."""
+    from .experiment import BUNDLED_FMU
+    given = path or os.environ.get("PAINLEVE_FMU") or (BUNDLED_FMU if BUNDLED_FMU.exists() else DEFAULT_FMU)
     p = pathlib.Path(given)
     if not p.exists():
         how = "" if path else " (the default; set PAINLEVE_FMU or pass --fmu)"
-        raise UsageError(f"no FMU at {p}{how}: build it with `bash run.sh main`, which writes {DEFAULT_FMU}, "
+        raise UsageError(f"no FMU at {p}{how}: `pip install` the repository (it builds one into the package), "
+                         f"build it with `bash run.sh main`, which writes {DEFAULT_FMU}, "
                          f"or give the path of a PainleveRod.fmu")
     if p.is_dir() or not zipfile.is_zipfile(p):
         raise UsageError(f"{p} is not an FMU (an FMU is a zip archive such as {DEFAULT_FMU}); give the .fmu file")
@@ -140,8 +144,8 @@ def _case_options(parser, help_suffix=""):
 
 
 def _fmu_option(parser):
-    parser.add_argument("--fmu", metavar="PATH", help=f"the FMU to simulate (default: $PAINLEVE_FMU or "
-                                                      f"{DEFAULT_FMU})")
+    parser.add_argument("--fmu", metavar="PATH", help=f"the FMU to simulate (default: $PAINLEVE_FMU, else the "
+                                                      f"one installed with the package, else {DEFAULT_FMU})")
 
 
 def _interface_option(parser, *, all_choice=False):
@@ -249,10 +253,10 @@ def _hypothesis_hint(case, err):
     from . import analytic as an
     text = str(err)
     if "w10" in text:
-        try:
-            return f"give --w10 < 0 (IWC below the separatrix w1* = {case.w1_star:.4f}, lift-off above it)"
-        except an.HypothesisError:
+        w1s = an.predict(case).w1_star
+        if math.isnan(w1s):
             return "give --w10 < 0"
+        return f"give --w10 < 0 (IWC below the separatrix w1* = {w1s:.4f}, lift-off above it)"
     if "p_+" in text or "q_+" in text:
         if case.mu <= an.mu_P(case.alpha):
             return f"raise --mu above mu_P(alpha) = {an.mu_P(case.alpha):.4f}, or lower --alpha"
@@ -272,26 +276,27 @@ def _fmt(x):
 def iwc_report(case, o):
     """(heading lines, table rows) for one simulated case beside its predictions."""
     from . import analytic as an
-    quadrant = {1: "inconsistent, b < 0", 2: "indeterminate, b > 0"}[case.theorem]
-    lam = case.lambda_plus
-    heading = [f"Theorem {case.theorem} ({quadrant}, p_+ = "
+    predicted = an.predict(case)
+    quadrant = {1: "inconsistent, b < 0", 2: "indeterminate, b > 0"}[predicted.theorem]
+    lam = predicted.lambda_plus
+    heading = [f"Theorem {predicted.theorem} ({quadrant}, p_+ = "
                f"{an.p_plus(case.theta0, alpha=case.alpha, mu=case.mu):.4g}): alpha={case.alpha:g} mu={case.mu:g} "
                f"delta={case.delta:g} eps={case.epsilon:g}; theta0={case.theta0:g} phi0={case.phi0:g} "
                f"v0={case.v0:g} w(0)=eps*{case.w10:g}"]
-    if case.theorem == 2:
-        heading.append(f"separatrix w1* = {case.w1_star:.6g}: the paper predicts "
-                       f"{'IWC (w10 < w1*)' if case.predicts_iwc else 'lift-off (w10 > w1*)'}")
-    ev = case.e * case.v0
-    rows = [("outcome", "IWC" if o.iwc else "lift-off", "IWC" if case.predicts_iwc else "lift-off", "")]
-    if case.predicts_iwc:
+    if predicted.theorem == 2:
+        heading.append(f"separatrix w1* = {predicted.w1_star:.6g}: the paper predicts "
+                       f"{'IWC (w10 < w1*)' if predicted.iwc else 'lift-off (w10 > w1*)'}")
+    ev = predicted.e * case.v0
+    rows = [("outcome", "IWC" if o.iwc else "lift-off", "IWC" if predicted.iwc else "lift-off", "")]
+    if predicted.iwc:
         rows.append(("w at return (y = 0)", _fmt(o.w), f"{ev:.6g} (e v0)",
                      f"{o.w - ev:+.3e} ({(o.w - ev) / ev:+.3%} of e v0)"))
-        rows.append(("phi", _fmt(o.phi), f"{case.predicted_phi:.6g}", f"{o.phi_error:+.3e}"))
+        rows.append(("phi", _fmt(o.phi), f"{predicted.phi:.6g}", f"{o.phi_error:+.3e}"))
     else:
         rows.append(("w at return (y = 0)", _fmt(o.w), "O(eps)", f"w/eps = {o.w / case.epsilon:.3g}"))
         rows.append(("phi", _fmt(o.phi), f"{case.phi0:.6g} + O(eps)", f"{o.phi - case.phi0:+.3e}"))
     rows.append(("theta", _fmt(o.theta), f"{case.theta0:.6g}", f"{o.theta_error:+.3e}"))
-    if case.predicts_iwc:
+    if predicted.iwc:
         rows += [("v", _fmt(o.v), "0 + O(eps)", f"v/eps = {o.v / case.epsilon:+.3g}"),
                  ("t_return", _fmt(o.t_return), f"{case.epsilon * math.log(1 / case.epsilon) / lam:.4g} "
                   f"(eps ln(1/eps)/lambda_+)", "leading order only")]
@@ -299,15 +304,17 @@ def iwc_report(case, o):
         rows += [("v", _fmt(o.v), f"{case.v0:.6g} + O(eps)", f"{o.v - case.v0:+.3e}"),
                  ("t_return", _fmt(o.t_return), "O(eps)", f"t/eps = {o.t_return / case.epsilon:.3g}")]
     rows += [
-             ("compression / stick / lift-off", f"{_fmt(o.compression)} / {_fmt(o.stick)} / {_fmt(o.lift_off)}",
-              "", "durations"),
+             ("compression / stick / lift-off / flight back",
+              f"{_fmt(o.compression)} / {_fmt(o.stick)} / {_fmt(o.lift_off)} / {_fmt(o.flight_back)}", "",
+              "durations (see painleve.outcome)"),
              ("events", str(o.events), "", "mode switches (-1: not seen through CS)")]
     return heading, rows
 
 
 def cmd_iwc(args):
     from . import analytic as an
-    from .experiment import Case, Experiment
+    from .case import Case
+    from .experiment import Experiment
     from .sweep import predictions
     case = Case(**{k: getattr(args, k) for k in DEFAULTS})
     try:
@@ -315,14 +322,15 @@ def cmd_iwc(args):
     except an.HypothesisError as err:
         raise UsageError(f"painleve iwc: {err}; {_hypothesis_hint(case, err)}") from None
     fmu = fmu_file(args.fmu)
-    with Experiment(fmu, interface=args.interface) as experiment:
+    with Experiment(fmu, fmi_type=FMI_TYPES[args.interface]) as experiment:
         outcome = experiment.run(case)
     if args.json:
         row = outcome.as_row()
         print(to_json({"fmu": fmu, "interface": args.interface, "case": {k: row[k] for k in DEFAULTS},
                      "predicted": predictions(case),
                      "simulated": {k: row[k] for k in ("iwc", "w", "theta", "phi", "v", "t_return",
-                                                       "compression", "stick", "lift_off", "events")},
+                                                       "compression", "stick", "lift_off", "flight_back",
+                                                       "events")},
                      "errors": {k: row[k] for k in ("w_error", "phi_error", "theta_error")}}))
         return 0
     heading, rows = iwc_report(case, outcome)
@@ -404,7 +412,7 @@ def cmd_sweep(args):
     signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, _interrupt)
     try:
-        result = run_sweep(spec, fmu, args.out, interface=args.interface, scheduler=args.scheduler,
+        result = run_sweep(spec, fmu, args.out, fmi_type=FMI_TYPES[args.interface], scheduler=args.scheduler,
                            workers=args.workers, batch=max(1, args.batch), serial=args.serial,
                            progress=not args.no_progress)
     except StoreError as err:
@@ -457,7 +465,7 @@ def main(argv=None):
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
     except Exception as err:
-        from .experiment import SimulationError
+        from .outcome import SimulationError
         if isinstance(err, SimulationError):
             print(f"error: the simulation failed: {err}; try a smaller --eps or --delta "
                   f"(the asymptotic regime needs eps (1 + delta)^3 << 1)", file=sys.stderr)

@@ -31,18 +31,18 @@ as well, so a grazing dip below y = 0 inside one step is not missed.
 Why it exists: an independent check of the FMU (same equations, different
 code, different solvers: tests/test_reference.py compares the two), and the
 baseline of the benchmark (what the FMU saves over a Python model integrated
-by scipy: ``ReferenceOutcome`` carries solve_ivp's cost counters).
+by scipy: the Outcome's solver_stats carry solve_ivp's cost counters).
 
 ``run_reference(case)`` runs one IWC case of experiment.py (start on the floor,
 y = 0, w = eps w10; stop at the rod's return to y = 0 moving up after having
-touched) and returns a ``ReferenceOutcome``; ``simulate(rod, x0, t_end)`` is
+touched) and returns its ``Outcome`` (the harness's, phases and all); ``simulate(rod, x0, t_end)`` is
 the general integrator from any state, with the trajectory if asked for.
 
 Conventions shared with the FMU harness, so that the two are compared at equal
 accuracy: the relative tolerance defaults to min(1e-6, eps/100), the absolute
 tolerance of each state is rtol times its nominal (1 for x, v, theta, phi;
 eps^2 for y; eps for w: the contact's own scales), and the run's horizon is
-that of ``Experiment._solver_settings``. The rod's coefficients are written
+``case.horizon``'s, as for the FMU. The rod's coefficients are written
 out here with ``math`` (the right-hand side runs ~1e4 times per case, and
 analytic.py's public functions validate their arguments on every call);
 tests/test_reference.py checks them against analytic.py.
@@ -56,9 +56,12 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+from .case import horizon
+from .outcome import outcome_from_switches
+
 __all__ = ["METHODS", "FILIPPOV", "FLIGHT", "SLIP_FORWARD", "STICK", "SLIP_BACKWARD", "Rod",
-           "ReferenceOutcome", "ReferenceRun", "ReferenceSimulationError", "run_reference", "simulate",
-           "horizon", "default_rtol", "nominals"]
+           "ReferenceRun", "ReferenceSimulationError", "run_reference", "simulate",
+           "default_rtol", "nominals"]
 
 METHODS = ("LSODA", "DOP853", "Radau", "BDF")
 FILIPPOV = ("paper", "exact")
@@ -323,11 +326,6 @@ def nominals(epsilon):
     return np.array([1.0, 1.0, epsilon ** 2, epsilon, 1.0, 1.0])
 
 
-def horizon(case):
-    """Experiment._solver_settings's stop time: eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta))."""
-    return case.epsilon * (10 * math.log(1 / case.epsilon) / case.lambda_plus + 50 * (1 + case.delta))
-
-
 @dataclass
 class ReferenceRun:
     """One integration: the segments (mode, t0, t1), the stop state, cost counters, and the
@@ -470,37 +468,15 @@ def _next_mode(rod, mode, name, x, run):
     raise AssertionError(name)  # pragma: no cover
 
 
-@dataclass(frozen=True)
-class ReferenceOutcome:
-    """The reference's state at the rod's return to y = 0, and what the integration cost."""
-    case: object
-    iwc: bool           # the rod stuck before lifting off
-    w: float
-    v: float
-    theta: float
-    phi: float
-    t_return: float
-    nfev: int           # right-hand side calls, all segments (finite-difference Jacobians included)
-    njev: int           # Jacobian evaluations
-    nlu: int            # LU decompositions
-    nsteps: int         # accepted steps (len(sol.t) - 1 summed over segments)
-    nevents: int        # events that restarted solve_ivp in a new mode (mode switches; the return not counted)
-    method: str = "Radau"
-    rtol: float = math.nan
-    modes: tuple = ()   # the modes in order, e.g. ("slip+", "stick", "slip-", "flight")
-    filippov: str = "exact"
-
-    @property
-    def w_error(self):
-        return self.case.w_error(self.w)
-
-    @property
-    def phi_error(self):
-        return self.case.phi_error(self.phi)
+# The FMU's (contact, mode) of each reference mode, for the one phase extraction (outcome.phases).
+_CONTACT_MODE = {FLIGHT: (False, 0), SLIP_FORWARD: (True, 1), STICK: (True, 0), SLIP_BACKWARD: (True, -1)}
 
 
-def run_reference(case, method="Radau", rtol=None, *, jac=True, filippov="exact"):
-    """One IWC case (experiment.Case) integrated by solve_ivp, reduced like Experiment.run.
+def run_reference(case, method="Radau", relative_tolerance=None, *, jac=True, filippov="exact"):
+    """One IWC case (a Case) integrated by solve_ivp, reduced to its Outcome like Experiment.run;
+    solver_stats: nfev (right-hand sides, finite-difference Jacobians included), njev, nlu,
+    nsteps (accepted), nevents (mode switches; the return not counted), method,
+    relative_tolerance, modes (in order, e.g. ("slip+", "stick", "slip-", "flight")), filippov.
 
     Starts on the floor (y = 0, w = eps w10, v = v0, theta0, phi0) and stops at the
     return to y = 0 moving up after having touched. Raises ValueError for an unknown
@@ -512,13 +488,14 @@ def run_reference(case, method="Radau", rtol=None, *, jac=True, filippov="exact"
     case.check()
     rod = Rod(alpha=case.alpha, mu=case.mu, delta=case.delta, epsilon=case.epsilon, filippov=filippov)
     x0 = [0.0, case.v0, 0.0, case.epsilon * case.w10, case.theta0, case.phi0]
-    run = simulate(rod, x0, horizon(case), method=method, rtol=rtol, jac=jac)
+    run = simulate(rod, x0, horizon(case), method=method, rtol=relative_tolerance, jac=jac)
     if not run.returned:
         raise ReferenceSimulationError(f"{case} did not return to y = 0 within t = {run.t_stop:.3g} "
                                        f"(modes {run.modes})")
     x = run.x_stop
-    return ReferenceOutcome(case=case, iwc=STICK in run.modes, w=float(x[W]), v=float(x[V]),
-                            theta=float(x[THETA]), phi=float(x[PHI]), t_return=float(run.t_stop),
-                            nfev=run.nfev, njev=run.njev, nlu=run.nlu, nsteps=run.nsteps, nevents=run.nevents,
-                            method=method, rtol=default_rtol(case.epsilon) if rtol is None else float(rtol),
-                            modes=run.modes, filippov=filippov)
+    switches = [(t0, *_CONTACT_MODE[mode]) for mode, t0, _, _ in run.segments]
+    stats = dict(nfev=run.nfev, njev=run.njev, nlu=run.nlu, nsteps=run.nsteps, nevents=run.nevents, method=method,
+                 relative_tolerance=default_rtol(case.epsilon) if relative_tolerance is None
+                 else float(relative_tolerance), modes=run.modes, filippov=filippov)
+    return outcome_from_switches(case, switches, run.t_stop, dict(w=x[W], v=x[V], theta=x[THETA], phi=x[PHI]),
+                                 events=run.nevents, solver_stats=stats)
