@@ -8,11 +8,10 @@ the floor; the return to y = 0 is then the closed-form free flight run back
 from the first point after it (outcome.flight_back_to_floor)."""
 import re
 
-from .outcome import flight_back_to_floor, no_return, outcome_from_switches
+from .outcome import STATE_AT_RETURN, flight_back_to_floor, no_return, outcome_from_switches
 
 # The communication step in eps: well inside the flight after the return (O(1) long).
 STEP_IN_EPSILONS = 4
-_STATES = ("v", "y", "w", "theta", "phi")     # those an Outcome reads
 # The FMU's logEvents message for a mode switch (fmi2_me.c, handle_event).
 _SWITCH_MESSAGE = re.compile(r"t = (?P<t>\S+): indicator .*; contact \d -> (?P<contact>\d), "
                              r"mode \S+ -> (?P<mode>\S+?)(;|$)")
@@ -43,7 +42,7 @@ def run_co_simulation(experiment, case):
                         switches.append(switch)
                 read = len(experiment.messages)
             left = any(not contact for _, contact, _ in switches[1:])
-            if left and (state := experiment.read(_STATES))["y"] >= 0:
+            if left and (state := experiment.read(STATE_AT_RETURN))["y"] >= 0:
                 break
         else:
             raise no_return(case, stop)

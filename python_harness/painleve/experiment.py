@@ -182,12 +182,15 @@ class Experiment:
             return True
         return step_finished
 
-    def simulate_from(self, start_values, *, stop_time, output_interval, relative_tolerance=1e-8, output=OUTPUTS):
-        """A free run from any start values: fmpy's structured array, events recorded; the FMU's
-        own words in a SimulationError if it stops or returns a non-finite value."""
+    def simulate_from(self, start_values, *, stop_time, output_interval=None, relative_tolerance=1e-8,
+                      output=OUTPUTS, solver="CVode", step_size=None):
+        """A free Model Exchange run from any start values (fmpy's simulate_fmu arguments): fmpy's
+        structured array, events recorded; the FMU's own words in a SimulationError if it stops
+        or returns a non-finite value."""
         what = f"run from {dict(start_values)}"
         r = self._simulate(what, start_values=dict(start_values), output=list(output), stop_time=stop_time,
-                           output_interval=output_interval, relative_tolerance=relative_tolerance)
+                           output_interval=output_interval, relative_tolerance=relative_tolerance, solver=solver,
+                           step_size=step_size)
         for name in output:
             if r[name].dtype.kind == "f" and not np.all(np.isfinite(r[name])):
                 raise SimulationError(f"{what}: the FMU returned a non-finite {name}")

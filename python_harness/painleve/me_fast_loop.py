@@ -13,9 +13,7 @@ from ctypes import byref, c_long
 from fmpy.sundials import CVodeSolver
 
 from .fmpy_internals import c_functions, cvode_get_num_steps, vector_data
-from .outcome import no_return, outcome_from_switches
-
-_STATES = ("v", "y", "w", "theta", "phi")     # those an Outcome reads
+from .outcome import STATE_AT_RETURN, no_return, outcome_from_switches
 
 
 class _NoInput:
@@ -123,7 +121,7 @@ def run_model_exchange(experiment, case):
         if switches[-1][1:] != (contact, mode):
             switches.append((t, contact, mode))
         if any(c for _, c, _ in switches) and not contact:
-            back.update(experiment.read(_STATES))
+            back.update(experiment.read(STATE_AT_RETURN))
             return back["y"] >= 0
         return False
 
