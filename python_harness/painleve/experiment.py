@@ -24,7 +24,7 @@ through either interface, so the solver's error stays below the theorem's
 O(eps ln 1/eps). Euler (through simulate_fmu) steps once per output interval.
 """
 import contextlib
-import pathlib
+import importlib.resources
 import shutil
 import tempfile
 
@@ -36,8 +36,9 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi
 from .case import Case, horizon
 from .outcome import SimulationError, outcome_of_trajectory
 
-# The FMU a pip install of the package carries (CMake builds it into the wheel).
-BUNDLED_FMU = pathlib.Path(__file__).with_name("PainleveRod.fmu")
+# The FMU a pip install of the package carries (CMake builds it into the wheel). Through the
+# package's resources, so that an editable install (its FMU in site-packages, its code here) finds it.
+BUNDLED_FMU = importlib.resources.files("painleve").joinpath("PainleveRod.fmu")
 FMI_TYPES = ("ModelExchange", "CoSimulation")
 STATES = ("x", "v", "y", "w", "theta", "phi")     # the FMU's continuous states, in its order
 OUTPUTS = STATES + ("mode", "contact")
