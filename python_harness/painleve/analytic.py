@@ -242,14 +242,27 @@ def theorem_of(case):
 
 
 def check_case(case):
-    """Raises HypothesisError, naming the hypothesis, unless Theorem 1 or 2 covers the Case."""
-    if not (case.epsilon > 0 and np.isfinite(case.epsilon)):
-        raise HypothesisError(f"epsilon must be > 0; got {case.epsilon}")
-    theorem = theorem_of(case)
-    check = check_theorem1 if theorem == 1 else check_theorem2
-    check(case.theta0, case.phi0, case.v0, alpha=case.alpha, mu=case.mu, delta=case.delta)
-    if theorem == 2 and not case.w10 < 0:
-        raise HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {case.w10}")
+    """Raises HypothesisError, naming the hypothesis, unless Theorem 1 or 2 covers the Case
+    (a fresh exception each time; the verdict is computed once per case, as predict's)."""
+    failure = _hypothesis_failure(case)
+    if failure is not None:
+        raise HypothesisError(*failure)
+
+
+@functools.lru_cache(maxsize=4096)
+def _hypothesis_failure(case):
+    """(message, hypotheses) of the first failing hypothesis of the Case, or None."""
+    try:
+        if not (case.epsilon > 0 and np.isfinite(case.epsilon)):
+            raise HypothesisError(f"epsilon must be > 0; got {case.epsilon}")
+        theorem = theorem_of(case)
+        check = check_theorem1 if theorem == 1 else check_theorem2
+        check(case.theta0, case.phi0, case.v0, alpha=case.alpha, mu=case.mu, delta=case.delta)
+        if theorem == 2 and not case.w10 < 0:
+            raise HypothesisError(f"Theorem 2 starts the rod moving down, w10 < 0; got w10 = {case.w10}")
+    except HypothesisError as err:
+        return str(err), tuple(err.hypotheses)
+    return None
 
 
 def _or_nan(formula):

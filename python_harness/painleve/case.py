@@ -3,6 +3,8 @@ floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
 import math
 from dataclasses import dataclass
 
+from .analytic import check_case, predict
+
 
 @dataclass(frozen=True)
 class Case:
@@ -20,7 +22,6 @@ class Case:
 
     def check(self):
         """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
-        from .analytic import check_case
         check_case(self)
 
     def start_values(self):
@@ -33,5 +34,4 @@ def horizon(case):
     """Where a run of the case that has not returned to the floor is given up: in fast time
     tau = t/eps the IWC takes ln(1/eps)/lambda_+ to compress and O(1 + delta) to stick and
     lift off, so eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta))."""
-    from .analytic import predict
     return case.epsilon * (10 * math.log(1 / case.epsilon) / predict(case).lambda_plus + 50 * (1 + case.delta))

@@ -15,7 +15,7 @@ import signal
 import sys
 import time
 
-from .cli_parser import DEFAULTS, FMI_TYPES, Interrupted, RunError, UsageError, build_parser, fmu_file
+from .cli_parser import DEFAULTS, Interrupted, RunError, UsageError, build_parser, fmu_file
 from .report import to_json
 
 
@@ -86,7 +86,7 @@ def iwc_report(case, o):
 def cmd_iwc(args):
     from . import analytic as an
     from .case import Case
-    from .experiment import Experiment
+    from .experiment import FMI_TYPES, Experiment
     from .sweep import predictions
     case = Case(**{k: getattr(args, k) for k in DEFAULTS})
     try:
@@ -167,6 +167,7 @@ def cmd_figures(args):
 
 # ------------------------------------------------------------------ sweep
 def cmd_sweep(args):
+    from .experiment import FMI_TYPES
     from .sweep import run_sweep
     from .sweepspec import PARAMS, SpecError, SweepSpec
     from .sweepstore import ResultStore, StoreError

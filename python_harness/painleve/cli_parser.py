@@ -9,7 +9,6 @@ import textwrap
 import zipfile
 
 DEFAULT_FMU = "build/PainleveRod.fmu"
-FMI_TYPES = {"ME": "ModelExchange", "CS": "CoSimulation"}     # --interface's names, fmpy's
 DEFAULTS = dict(theta0=1.0, phi0=0.5, v0=1.0, delta=1.0, epsilon=1e-3, w10=0.0, alpha=3.0, mu=3.0)
 
 

@@ -19,8 +19,11 @@ _SWITCH_MESSAGE = re.compile(r"t = (?P<t>\S+): indicator .*; contact \d -> (?P<c
 
 def mode_switches(messages):
     """[(t, contact, mode)] after each switch the FMU logged (category logEvents), in order."""
-    found = (_SWITCH_MESSAGE.match(message) for _, category, message in messages if category == "logEvents")
-    return [(float(m["t"]), m["contact"] == "1", int(m["mode"])) for m in found if m]
+    switches = []
+    for _, category, message in messages:
+        if category == "logEvents" and (m := _SWITCH_MESSAGE.match(message)):
+            switches.append((float(m["t"]), m["contact"] == "1", int(m["mode"])))
+    return switches
 
 
 def run_co_simulation(experiment, case):
@@ -32,7 +35,7 @@ def run_co_simulation(experiment, case):
         instance.setDebugLogging(True, ["logEvents"])
         experiment.start(case, settings["relative_tolerance"])
         switches = [(0.0, *experiment.contact_and_mode())]    # the start: a reference, not a switch
-        t, read = 0.0, 0
+        t, read, left = 0.0, 0, False
         while t < stop:
             instance.doStep(t, h)
             t += h
@@ -40,8 +43,8 @@ def run_co_simulation(experiment, case):
                 for switch in mode_switches(experiment.messages[read:]):
                     if switch[1:] != switches[-1][1:]:   # the initial event iteration logs "1 -> 1"
                         switches.append(switch)
+                        left = left or not switch[1]
                 read = len(experiment.messages)
-            left = any(not contact for _, contact, _ in switches[1:])
             if left and (state := experiment.read(STATE_AT_RETURN))["y"] >= 0:
                 break
         else:

@@ -34,12 +34,15 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 from .case import Case, horizon
+from .cs_fast_loop import run_co_simulation
+from .me_fast_loop import run_model_exchange
 from .outcome import SimulationError, outcome_of_trajectory
 
 # The FMU a pip install of the package carries (CMake builds it into the wheel). Through the
 # package's resources, so that an editable install (its FMU in site-packages, its code here) finds it.
 BUNDLED_FMU = importlib.resources.files("painleve").joinpath("PainleveRod.fmu")
-FMI_TYPES = ("ModelExchange", "CoSimulation")
+# fmpy's fmi_type by the short name `painleve --interface` and the validation report use.
+FMI_TYPES = {"ME": "ModelExchange", "CS": "CoSimulation"}
 STATES = ("x", "v", "y", "w", "theta", "phi")     # the FMU's continuous states, in its order
 OUTPUTS = STATES + ("mode", "contact")
 FMI2_ERROR = 3
@@ -59,7 +62,7 @@ class Experiment:
 
     def __init__(self, fmu_path=None, *, fmi_type="ModelExchange", solver="CVode", relative_tolerance=None,
                  steps_per_epsilon=100):
-        if fmi_type not in FMI_TYPES:
+        if fmi_type not in FMI_TYPES.values():
             raise ValueError(f"fmi_type must be 'ModelExchange' or 'CoSimulation', not {fmi_type!r}")
         if solver not in ("CVode", "Euler"):
             raise ValueError(f"solver must be 'CVode' or 'Euler', not {solver!r}")
@@ -199,8 +202,6 @@ class Experiment:
 
     def run(self, case):
         """One IWC case, reduced to its Outcome."""
-        from .cs_fast_loop import run_co_simulation
-        from .me_fast_loop import run_model_exchange
         if self.fmi_type == "CoSimulation":
             return run_co_simulation(self, case)
         if self.solver == "CVode":

@@ -22,14 +22,13 @@ import numpy as np
 from . import acceptance
 from . import analytic as an
 from .case import Case
-from .experiment import Experiment
+from .experiment import FMI_TYPES, Experiment
 from .outcome import SimulationError
 from .report import Check
 from .studies import separatrix
 from .validate_static import default_experiment_check, static_checks
 
 EPSILONS = (1e-4, 1e-5, 1e-6)
-FMI_TYPES = {"ME": "ModelExchange", "CS": "CoSimulation"}    # the report's names of the interfaces
 
 
 # ------------------------------------------------------------------ the cases
