@@ -80,10 +80,12 @@ def count(text):
 
 
 def fmu_file(path):
-    """The FMU to use (--fmu, else $PAINLEVE_FMU, else the one installed with the package, else
-    build/PainleveRod.fmu), checked so that a wrong path ends in one line saying what to do."""
+    """The FMU to use (--fmu, else $PAINLEVE_FMU, else build/PainleveRod.fmu where there is one, as in
+    the repository after `bash run.sh`, else the one installed with the package), checked so that a
+    wrong path ends in one line saying what to do."""
     from .experiment import BUNDLED_FMU
-    given = path or os.environ.get("PAINLEVE_FMU") or (BUNDLED_FMU if BUNDLED_FMU.exists() else DEFAULT_FMU)
+    given = path or os.environ.get("PAINLEVE_FMU") or \
+        (BUNDLED_FMU if BUNDLED_FMU.is_file() and not os.path.exists(DEFAULT_FMU) else DEFAULT_FMU)
     p = pathlib.Path(given)
     if not p.exists():
         how = "" if path else " (the default; set PAINLEVE_FMU or pass --fmu)"
@@ -130,8 +132,9 @@ def _case_options(parser, help_suffix=""):
 
 
 def _fmu_option(parser):
-    parser.add_argument("--fmu", metavar="PATH", help=f"the FMU to simulate (default: $PAINLEVE_FMU, else the "
-                                                      f"one installed with the package, else {DEFAULT_FMU})")
+    parser.add_argument("--fmu", metavar="PATH", help=f"the FMU to simulate (default: $PAINLEVE_FMU, else "
+                                                      f"{DEFAULT_FMU} if there is one, else the one installed "
+                                                      f"with the package)")
 
 
 def _interface_option(parser, *, all_choice=False):
@@ -174,8 +177,9 @@ def _add_validate(sub):
                                      "parameter space at eps = 1e-4 ... 1e-6 through every interface the FMU "
                                      "declares. Prints a pass/fail table with the measured errors; exits 1 if "
                                      "any check fails.")
-    val.add_argument("fmu", nargs="?", metavar="FMU", help=f"the FMU to validate (default: $PAINLEVE_FMU or "
-                                                           f"{DEFAULT_FMU})")
+    val.add_argument("fmu", nargs="?", metavar="FMU", help=f"the FMU to validate (default: $PAINLEVE_FMU, else "
+                                                           f"{DEFAULT_FMU} if there is one, else the one "
+                                                           f"installed with the package)")
     _interface_option(val, all_choice=True)
     val.add_argument("--sample", type=count, default=24, metavar="N",
                      help="Theorem 1 cases drawn at random (fixed seed) beside the fixed ones (default 24)")
