@@ -96,11 +96,15 @@ more_importers_setup() {
     mvn -q -B -Dstyle.color=never -f "$jvm/pom.xml" compile dependency:copy-dependencies
 }
 
+# The harness is installed the way a Python user installs it (pyproject.toml: scikit-build-core
+# runs CMake and bundles PainleveRod.fmu in the package), here editable and with the pinned
+# build requirements of requirements.txt already in the venv.
 python_setup() {
     [ -x "$PY" ] || { log "creating $VENV"; python3 -m venv "$VENV"; }
     log "pip install (pinned, requirements.txt)"
     "$PY" -m pip install -q --disable-pip-version-check -r requirements.txt
-    "$PY" -m pip install -q --disable-pip-version-check --no-deps -e python_harness
+    log "pip install -e . (builds the FMU into the package)"
+    "$PY" -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
 }
 
 build_fmu() {

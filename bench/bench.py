@@ -10,7 +10,7 @@ Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
                         (painleve.me_loop), one instance, fmi2Reset between cases
   fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
   fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
-  fmpy CS fast loop     painleve Experiment(interface="CS"): fmi2DoStep, 4 eps apart
+  fmpy CS fast loop     painleve Experiment(fmi_type="CoSimulation"): fmi2DoStep, 4 eps apart
   scipy <method>        painleve.reference (solve_ivp, the same model in Python)
   native                bench/native: the FMU's .so under CVODE in C, no Python
 
@@ -48,7 +48,10 @@ sys.path.insert(0, str(HERE))
 import fmpy                                              # noqa: E402
 from native_driver import run_native                     # noqa: E402
 from painleve import reference                           # noqa: E402
-from painleve.experiment import OUTPUTS, Case, Experiment, outcome_of   # noqa: E402
+from painleve import analytic as an                      # noqa: E402
+from painleve.case import Case                           # noqa: E402
+from painleve.experiment import OUTPUTS, Experiment      # noqa: E402
+from painleve.outcome import outcome_of_trajectory       # noqa: E402
 
 FMU = ROOT / "build" / "PainleveRod.fmu"
 NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"
@@ -60,8 +63,13 @@ VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0)
 def cases_at(eps):
     """Theorem 1 at three theta0 and delta, Theorem 2 on both sides of w1*."""
     t1 = [Case(epsilon=eps), Case(epsilon=eps, theta0=0.9, delta=0.0), Case(epsilon=eps, theta0=1.1, delta=0.5)]
-    w1s = Case(epsilon=eps, **VIDEO).w1_star
+    w1s = an.predict(Case(epsilon=eps, **VIDEO)).w1_star
     return t1 + [Case(epsilon=eps, w10=1.2 * w1s, **VIDEO), Case(epsilon=eps, w10=0.8 * w1s, **VIDEO)]
+
+
+def w_error(case, w):
+    """w/v0 - e: the model's O(eps ln 1/eps) error (Theorem 1)."""
+    return w / case.v0 - an.predict(case).e
 
 
 class Counting:
@@ -85,9 +93,9 @@ class Runners:
     rtol None: the harness's, min(1e-6, eps/100)."""
 
     def __init__(self):
-        self.me, self.cs = Experiment(str(FMU)), Experiment(str(FMU), interface="CS")
-        self.euler = Experiment(str(FMU), solver="Euler")
-        self.euler_count = Counting(self.euler.fmu)
+        self.me, self.cs = Experiment(FMU), Experiment(FMU, fmi_type="CoSimulation")
+        self.euler = Experiment(FMU, solver="Euler")
+        self.euler_count = Counting(self.euler.instance)
 
     def names(self):
         return (["fmpy ME simulate_fmu", "fmpy ME fast loop", "fmpy ME Euler", "fmpy CS simulate_fmu",
@@ -96,7 +104,7 @@ class Runners:
     def run(self, name, case, rtol=None):
         self.me.relative_tolerance = self.cs.relative_tolerance = rtol    # simulate_fmu's settings too
         if name.endswith("simulate_fmu"):
-            return dict(w=self.simulate_fmu(case, "CS" if " CS " in name else "ME").w)
+            return dict(w=self.simulate_fmu(case, "CoSimulation" if " CS " in name else "ModelExchange").w)
         if name == "fmpy ME fast loop":
             o = self.me.run(case)
             return dict(w=o.w, nevents=o.events, **self.me.solver_stats)
@@ -107,8 +115,8 @@ class Runners:
         if name == "fmpy CS fast loop":
             return dict(w=self.cs.run(case).w)
         if name.startswith("scipy "):
-            o = reference.run_reference(case, method=name.split()[1], rtol=rtol)
-            return dict(w=o.w, nfev=o.nfev, nsteps=o.nsteps, nevents=o.nevents)
+            o = reference.run_reference(case, method=name.split()[1], relative_tolerance=rtol)
+            return dict(w=o.w, **{k: o.solver_stats[k] for k in ("nfev", "nsteps", "nevents")})
         raise KeyError(name)
 
     def run_block(self, name, cases, rtol=None):
@@ -118,13 +126,13 @@ class Runners:
                     for n in run_native(NATIVE, FMU, cases, rtol=rtol)]
         return [timed(self.run, name, case, rtol) for case in cases]
 
-    def simulate_fmu(self, case, interface):
+    def simulate_fmu(self, case, fmi_type):
         """fmpy.simulate_fmu from the .fmu file (unzip, load, run, free), with the harness's settings."""
-        experiment = self.cs if interface == "CS" else self.me
-        r = fmpy.simulate_fmu(str(FMU), fmi_type="CoSimulation" if interface == "CS" else "ModelExchange",
-                              start_values=case.start_values(), output=OUTPUTS, record_events=True,
-                              **experiment._solver_settings(case))
-        return outcome_of(case, r, exact_events=interface == "ME")
+        experiment = self.cs if fmi_type == "CoSimulation" else self.me
+        r = fmpy.simulate_fmu(str(FMU), fmi_type=fmi_type,
+                              start_values=case.start_values(), output=list(OUTPUTS), record_events=True,
+                              **experiment.settings(case))
+        return outcome_of_trajectory(case, r, exact_events=fmi_type == "ModelExchange")
 
     def close(self):
         for e in (self.me, self.cs, self.euler):
@@ -166,7 +174,7 @@ TARGET_SHARE = 0.01
 
 def accuracy_targets(ref, epsilons):
     """target[eps]: TARGET_SHARE of the largest |w/v0 - e| over the IWC cases (tight reference)."""
-    return {eps: TARGET_SHARE * max(abs(c.w_error(w)) for c, w in zip(cases_at(eps), ref[eps]) if c.predicts_iwc)
+    return {eps: TARGET_SHARE * max(abs(w_error(c, w)) for c, w in zip(cases_at(eps), ref[eps]) if an.predict(c).iwc)
             for eps in epsilons}
 
 
@@ -190,7 +198,7 @@ def equal_accuracy_rtols(runners, ref, targets, names=TUNABLE):
 
 
 def tightest(epsilons):
-    return {eps: [reference.run_reference(c, method="DOP853", rtol=1e-12).w for c in cases_at(eps)]
+    return {eps: [reference.run_reference(c, method="DOP853", relative_tolerance=1e-12).w for c in cases_at(eps)]
             for eps in epsilons}
 
 
@@ -232,7 +240,7 @@ def summarize(names, rows, ref, epsilons):
                 runner=name, eps=eps,
                 ms=1e3 * statistics.median(statistics.median(c["seconds"]) for c in cs),
                 nfev=median("nfev"), nsteps=median("nsteps"), nevents=median("nevents"),
-                err_e=max(abs(k.w_error(c["w"])) for c, k in zip(cs, cases) if k.predicts_iwc),
+                err_e=max(abs(w_error(k, c["w"])) for c, k in zip(cs, cases) if an.predict(k).iwc),
                 err_ref=max(abs(c["w"] - r) for c, r in zip(cs, ref[eps]))))
     return table
 

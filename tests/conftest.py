@@ -21,3 +21,11 @@ def fmu3_path():
     if not path.exists():
         pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
     return str(path)
+
+
+@pytest.fixture(scope="session")
+def loaded(fmu_path):
+    """The built FMU loaded once by the harness (extracted; raw instances from .instantiate)."""
+    from painleve.experiment import Experiment
+    with Experiment(fmu_path) as experiment:
+        yield experiment

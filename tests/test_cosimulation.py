@@ -1,5 +1,6 @@
 """Co-Simulation in the same FMU: the embedded CVODE integrates the same model
 and events as Model Exchange, for any master and any communication step."""
+import pathlib
 import re
 import subprocess
 
@@ -11,41 +12,11 @@ from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
 from painleve import analytic as an
-from painleve.experiment import Case, Experiment
-from painleve.instance import instantiate
+from painleve.case import Case
+from painleve.experiment import Experiment
 from painleve.studies import convergence
 from conftest import ROOT
-from me_driver import Rod
-
-STATES = ["x", "v", "y", "w", "theta", "phi"]
-
-
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
-
-
-class Slave:
-    """One Co-Simulation instance with its log messages."""
-
-    def __init__(self, unzipdir, tolerance=None, **start):
-        self.md = read_model_description(unzipdir)
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
-        self.messages = []
-        self.fmu = instantiate(unzipdir, self.md, lambda *m: self.messages.append(m), interface="CS")
-        self.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
-        self.fmu.setReal([self.vr[k] for k in start], list(start.values()))
-        self.fmu.enterInitializationMode()
-        self.fmu.exitInitializationMode()
-        self.t = 0.0
-
-    def step(self, h):
-        self.fmu.doStep(self.t, h)
-        self.t += h
-
-    def states(self):
-        return np.array(self.fmu.getReal([self.vr[k] for k in STATES]))
-
+from raw_instances import Rod, Slave
 
 def test_both_interfaces_declared_and_valid(fmu_path):
     md = read_model_description(fmu_path)
@@ -53,8 +24,8 @@ def test_both_interfaces_declared_and_valid(fmu_path):
     assert validate_fmu(fmu_path) == []
 
 
-def test_binary_needs_only_libc_and_libm(unzipdir):
-    so = next((unzipdir / "binaries" / "linux64").glob("*.so"))
+def test_binary_needs_only_libc_and_libm(loaded):
+    so = next((pathlib.Path(loaded.unzipdir) / "binaries" / "linux64").glob("*.so"))
     needed = re.findall(r"\(NEEDED\).*\[(.*)\]", subprocess.run(["readelf", "-d", so], capture_output=True,
                                                                  text=True, check=True).stdout)
     assert set(needed) <= {"libc.so.6", "libm.so.6"}, needed
@@ -76,8 +47,8 @@ def test_default_experiment_through_cosimulation_is_the_same_iwc(fmu_path, toler
 
 
 @pytest.mark.parametrize("tolerance", [1e-8, 1e-10])
-def test_one_step_per_millisecond_equals_a_single_step(unzipdir, tolerance):
-    fine, coarse = Slave(unzipdir, tolerance, epsilon=1e-3), Slave(unzipdir, tolerance, epsilon=1e-3)
+def test_one_step_per_millisecond_equals_a_single_step(loaded, tolerance):
+    fine, coarse = Slave(loaded, tolerance, epsilon=1e-3), Slave(loaded, tolerance, epsilon=1e-3)
     for _ in range(100):
         fine.step(1e-3)
     coarse.step(0.1)
@@ -86,26 +57,26 @@ def test_one_step_per_millisecond_equals_a_single_step(unzipdir, tolerance):
     assert not fine.fmu.getBooleanStatus(3)                        # fmi2Terminated
 
 
-def test_events_inside_a_step_are_handled_unseen(unzipdir):
+def test_events_inside_a_step_are_handled_unseen(loaded):
     # A single step over the whole IWC leaves the rod in flight, modes switched inside the step.
-    rod = Slave(unzipdir, epsilon=1e-4)
+    rod = Slave(loaded, epsilon=1e-4)
     rod.step(2e-3)
     assert rod.fmu.getBoolean([rod.vr["contact"]]) == [False]
     assert rod.fmu.getReal([rod.vr["w"]])[0] == pytest.approx(an.e(1.0, 1.0), rel=0.01)
 
 
-def test_wrong_communication_point_is_an_error(unzipdir):
-    rod = Slave(unzipdir)
+def test_wrong_communication_point_is_an_error(loaded):
+    rod = Slave(loaded)
     with pytest.raises(FMICallException):
         rod.fmu.doStep(0.5, 1e-3)
     assert "is not the instance's time" in rod.messages[-1][2]
 
 
-def test_a_fast_rod_is_not_taken_for_a_zeno_run(unzipdir):
+def test_a_fast_rod_is_not_taken_for_a_zeno_run(loaded):
     # A rod spinning at phi = 3e4 with eps = 0.1 dips its end below the floor about every 2e-4
     # time units (several events each): thousands of events, each at its own time. The guard
     # counts events at one instant only, so the run goes on; friction takes energy, nothing adds it.
-    rod = Slave(unzipdir, theta=0.3, phi=3e4, y=0.5, epsilon=0.1, delta=0.0, mu=1.0)
+    rod = Slave(loaded, theta=0.3, phi=3e4, y=0.5, epsilon=0.1, delta=0.0, mu=1.0)
     energy = [rod.fmu.getReal([rod.vr["energy"]])[0]]
     for _ in range(4):
         rod.step(0.5)
@@ -115,9 +86,9 @@ def test_a_fast_rod_is_not_taken_for_a_zeno_run(unzipdir):
     assert np.all(np.diff(energy) <= 1e-6 * energy[0]) and energy[-1] < energy[0]
 
 
-def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(unzipdir):
+def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(loaded):
     # An importer that keeps entering event mode without advancing time: the guard ends it.
-    rod = Rod(unzipdir)
+    rod = Rod(loaded)
     rod.initialize()
     with pytest.raises(FMICallException):
         for _ in range(100):
@@ -135,7 +106,7 @@ def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(unzip
                                     dict(alpha=2.0, mu=3.0, theta0=1.1, delta=2.0)])
 def test_theorem1_through_cosimulation_converges_like_model_exchange(fmu_path, params):
     epsilons = [e for e in (1e-3, 1e-4, 1e-5, 1e-6) if e * (1 + params["delta"]) ** 3 <= 2e-2]
-    with Experiment(fmu_path, interface="CS") as cs, Experiment(fmu_path, interface="ME") as me:
+    with Experiment(fmu_path, fmi_type="CoSimulation") as cs, Experiment(fmu_path) as me:
         by_cs, by_me = (convergence(x, Case(**params), epsilons) for x in (cs, me))
     for a, b in zip(by_cs.outcomes, by_me.outcomes):
         assert a.iwc and b.iwc
@@ -149,8 +120,8 @@ def test_theorem1_through_cosimulation_converges_like_model_exchange(fmu_path, p
 @pytest.mark.parametrize("factor, iwc", [(1.2, True), (0.8, False)])
 def test_theorem2_through_cosimulation_same_outcome(fmu_path, factor, iwc):
     video = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, epsilon=1e-4)
-    w10 = factor * Case(**video).w1_star
-    with Experiment(fmu_path, interface="CS") as cs, Experiment(fmu_path, interface="ME") as me:
+    w10 = factor * an.predict(Case(**video)).w1_star
+    with Experiment(fmu_path, fmi_type="CoSimulation") as cs, Experiment(fmu_path) as me:
         a, b = cs.run(Case(w10=w10, **video)), me.run(Case(w10=w10, **video))
     assert a.iwc == b.iwc == iwc
     assert a.w == pytest.approx(b.w, rel=1e-3)
@@ -169,13 +140,13 @@ def test_without_sundials_the_fmu_is_model_exchange_only(tmp_path):
     assert validate_fmu(fmu) == []
 
 
-def test_without_a_tolerance_cosimulation_uses_the_default_experiments(unzipdir):
+def test_without_a_tolerance_cosimulation_uses_the_default_experiments(loaded):
     # One source of truth: the DefaultExperiment's tolerance is what a master passes and what the
     # FMU uses when none is passed. A different tolerance gives a (slightly) different run.
-    default = float(read_model_description(unzipdir).defaultExperiment.tolerance)
+    default = float(loaded.model_description.defaultExperiment.tolerance)
     runs = {}
     for tolerance in (None, default, default / 100):
-        rod = Slave(unzipdir, tolerance=tolerance)
+        rod = Slave(loaded, tolerance=tolerance)
         for _ in range(10):
             rod.step(0.01)
         runs[tolerance] = rod.states()

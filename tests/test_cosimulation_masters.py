@@ -18,7 +18,10 @@ import numpy as np
 import pytest
 
 from other_importers import MASTERS
-from painleve.experiment import Case, Experiment, outcome_of
+from painleve import analytic as an
+from painleve.case import Case
+from painleve.experiment import Experiment
+from painleve.outcome import outcome_of_trajectory as outcome_of
 from rod_sim import OUTPUTS, phases, rod_energy
 
 DEFAULT = Case()                          # the modelDescription's start values

@@ -19,13 +19,11 @@ FMU computes.
   only in contact) is a dependency too: such changes are found with large
   perturbations around states near the switching surfaces.
 """
-import fmpy
 import numpy as np
 import pytest
-from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 
-from me_driver import Rod, _P
+from raw_instances import Rod, _P
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
 PARAMETERS = ["alpha", "mu", "delta", "epsilon"]
@@ -56,19 +54,14 @@ NEAR_SURFACES = {
 }
 
 
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
-
-
 NOT_REAL = set()     # Integer and Boolean variables: no directional derivative in FMI 2.0
 DISCRETE = set()     # frozen between events: no unknowns in Continuous-Time Mode
 
 
 @pytest.fixture(scope="module")
-def structure(unzipdir):
+def structure(loaded):
     """{list name: {unknown name: set of known names}} from the ModelStructure."""
-    md = read_model_description(unzipdir)
+    md = loaded.model_description
     NOT_REAL.update(v.name for v in md.modelVariables if v.type != "Real")
     DISCRETE.update(v.name for v in md.modelVariables if v.variability == "discrete")
     lists = dict(Outputs=md.outputs, Derivatives=md.derivatives, InitialUnknowns=md.initialUnknowns)
@@ -93,8 +86,8 @@ def scale_of(name, value, epsilon):
 class Instance:
     """One Rod, either in Continuous-Time Mode (after initialization) or left in Initialization Mode."""
 
-    def __init__(self, unzipdir, start, initialization):
-        self.rod, self.start = Rod(unzipdir), {**DEFAULTS, **start}
+    def __init__(self, loaded, start, initialization):
+        self.rod, self.start = Rod(loaded), {**DEFAULTS, **start}
         self.vr, self.initialization = self.rod.vr, initialization
         if initialization:
             self.rod.fmu.setupExperiment(startTime=0.0)
@@ -165,12 +158,12 @@ def assert_close(D, FD, f0, unknowns, knowns, where):
 
 # --------------------------------------------------------------- Continuous-Time Mode
 @pytest.fixture(scope="module")
-def continuous_time(unzipdir, structure):
+def continuous_time(loaded, structure):
     """Per mode of SMOOTH: (D, FD, values) of Outputs and Derivatives by the states."""
     unknowns = [u for u in real_unknowns(structure, "Outputs", "Derivatives") if u not in DISCRETE]
     out = {}
     for name, (start, expected) in SMOOTH.items():
-        inst = Instance(unzipdir, start, initialization=False)
+        inst = Instance(loaded, start, initialization=False)
         assert inst.mode() == expected, name
         out[name] = jacobians(inst, unknowns, STATES)
         inst.free()
@@ -196,13 +189,13 @@ def test_outputs_and_derivatives_declare_exactly_the_states_they_change_with(con
     assert not wrong, "; ".join(wrong)
 
 
-def test_discrete_outputs_are_frozen_between_events_and_declare_no_dependency(unzipdir, structure):
+def test_discrete_outputs_are_frozen_between_events_and_declare_no_dependency(loaded, structure):
     # FMI 2.0.4 §3.1: in Continuous-Time Mode relations are frozen; mode and contact change only
     # in Event Mode, by fmi2NewDiscreteStates, where the environment cannot set the states.
     # So they do not depend on the knowns of Outputs (the states): dependencies="".
     assert structure["Outputs"]["mode"] == set() and structure["Outputs"]["contact"] == set()
     for name, (start, expected) in SMOOTH.items():
-        inst = Instance(unzipdir, start, initialization=False)
+        inst = Instance(loaded, start, initialization=False)
         x0 = np.array(inst.rod.get(*STATES))
         for j, k in enumerate(STATES):
             for value in x0[j] + np.array([-1.0, -1e-3, -1e-6, 1e-6, 1e-3, 1.0]):   # across every surface
@@ -217,13 +210,13 @@ INIT_KNOWNS = PARAMETERS + STATES
 
 
 @pytest.mark.parametrize("mode", SMOOTH)
-def test_initialization_directional_derivatives_match_central_differences(unzipdir, structure, mode):
+def test_initialization_directional_derivatives_match_central_differences(loaded, structure, mode):
     start, expected = SMOOTH[mode]
     unknowns = real_unknowns(structure, "InitialUnknowns")
     # Sticking needs v = 0 exactly: any step in v slips, so v's column of the stick branch is
     # measured in Continuous-Time Mode only (above), where the mode is frozen.
     knowns = [k for k in INIT_KNOWNS if not (mode == "stick" and k == "v")]
-    inst = Instance(unzipdir, start, initialization=True)
+    inst = Instance(loaded, start, initialization=True)
     assert inst.mode() == expected
     D, FD, f0 = jacobians(inst, unknowns, knowns)
     assert inst.mode() == expected
@@ -240,7 +233,7 @@ def probe_values(name, value, epsilon):
     return [0.0, -value] + [value + n * d for d in (-3, -1, -0.3, 0.3, 1, 3)]
 
 
-def test_initial_unknowns_declare_exactly_the_knowns_they_change_with(unzipdir, structure):
+def test_initial_unknowns_declare_exactly_the_knowns_they_change_with(loaded, structure):
     declared = structure["InitialUnknowns"]
     unknowns = list(declared)
     reals = real_unknowns(structure, "InitialUnknowns")
@@ -255,7 +248,7 @@ def test_initial_unknowns_declare_exactly_the_knowns_they_change_with(unzipdir, 
     changes = {(u, k): False for u in unknowns for k in INIT_KNOWNS}
     # Smooth dependence: a nonzero central difference in some mode.
     for name, (start, _) in SMOOTH.items():
-        inst = Instance(unzipdir, start, initialization=True)
+        inst = Instance(loaded, start, initialization=True)
         knowns = [k for k in INIT_KNOWNS if not (name == "stick" and k == "v")]
         _, FD, _ = jacobians(inst, reals, knowns)
         inst.free()
@@ -264,7 +257,7 @@ def test_initial_unknowns_declare_exactly_the_knowns_they_change_with(unzipdir, 
                 changes[u, k] |= bool(FD[i, j] != 0)
     # Any dependence, through the mode decision too: large perturbations, also near the surfaces.
     for start in [s for s, _ in SMOOTH.values()] + list(NEAR_SURFACES.values()):
-        inst = Instance(unzipdir, start, initialization=True)
+        inst = Instance(loaded, start, initialization=True)
         base, eps = read(inst), inst.known("epsilon")
         for k in INIT_KNOWNS:
             k0 = inst.known(k)
@@ -288,9 +281,9 @@ def test_initial_unknowns_declare_exactly_the_knowns_they_change_with(unzipdir, 
     ("der(v)", "alpha", False),            # parameters are knowns in Initialization Mode only
     ("der(v)", "der(w)", False),           # a derivative is no known
 ])
-def test_directional_derivative_of_or_by_a_non_known_is_an_error(unzipdir, unknown, known, initialization):
+def test_directional_derivative_of_or_by_a_non_known_is_an_error(loaded, unknown, known, initialization):
     # FMI 2.0 defines directional derivatives of Real unknowns by Real knowns (§2.1.9, §2.2.8).
-    inst = Instance(unzipdir, SMOOTH["slip forward"][0], initialization)
+    inst = Instance(loaded, SMOOTH["slip forward"][0], initialization)
     with pytest.raises(FMICallException) as err:
         inst.directional([unknown], [known], [1.0])
     assert err.value.status == FMI2_ERROR

@@ -2,18 +2,12 @@
 quasi-static slipping, Filippov sticking, and impact without collision."""
 from ctypes import POINTER, c_double
 
-import fmpy
 import numpy as np
 import pytest
 
-from me_driver import Rod
+from raw_instances import Rod
 from painleve import analytic as an
 from rod_sim import energy_gradient, event_count, mode_changes, phases, rod_energy, simulate
-
-
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
 def test_free_flight_matches_closed_form(fmu_path):
@@ -174,12 +168,12 @@ def test_energy_never_increases_through_a_stick_without_damping(fmu_path):
 @pytest.mark.parametrize("delta", [0.0, 1.0])
 @pytest.mark.parametrize("theta", [0.7, 1.0, 1.3, 2.0])
 @pytest.mark.parametrize("phi", [-0.8, 0.5, 1.2])
-def test_sticking_derivatives_dissipate_only_in_the_damper(unzipdir, delta, theta, phi):
+def test_sticking_derivatives_dissipate_only_in_the_damper(loaded, delta, theta, phi):
     # Pointwise, from fmi2GetDerivatives: dE/dt = F_N w - F_T v + d(spring)/dt = -delta w^2/eps
     # with v = 0 (the spring's rate y w/eps^2 cancels the elastic part of F_N w).
     alpha, eps = 3.0, 1e-3
     for w in (-2e-4, 0.0, 2e-4):
-        rod = Rod(unzipdir)
+        rod = Rod(loaded)
         rod.initialize(alpha=alpha, mu=3.0, delta=delta, epsilon=eps, x=0.0, v=0.0, y=-1e-6, w=w,
                        theta=theta, phi=phi)
         assert (bool(rod.fmu.getBoolean([rod.vr["contact"]])[0]), rod.fmu.getInteger([rod.vr["mode"]])[0]) \

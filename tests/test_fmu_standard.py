@@ -11,15 +11,10 @@ from fmpy.build import build_platform_binary
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from me_driver import Rod
+from raw_instances import Rod
 from rod_sim import OUTPUTS, phases
 
 FMI2_ERROR = 3
-
-
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
 def default_experiment(fmu, fmi_type="ModelExchange", **kw):
@@ -61,8 +56,8 @@ BAD_PARAMETERS = [
 
 
 @pytest.mark.parametrize("name, value", BAD_PARAMETERS)
-def test_bad_value_is_an_error_naming_variable_value_and_range(unzipdir, name, value):
-    rod = Rod(unzipdir)
+def test_bad_value_is_an_error_naming_variable_value_and_range(loaded, name, value):
+    rod = Rod(loaded)
     rod.fmu.enterInitializationMode()
     before = rod.get(name)
     with pytest.raises(FMICallException) as err:
@@ -78,8 +73,8 @@ def test_bad_value_is_an_error_naming_variable_value_and_range(unzipdir, name, v
     rod.free()
 
 
-def test_a_rejected_call_changes_nothing(unzipdir):
-    rod = Rod(unzipdir)
+def test_a_rejected_call_changes_nothing(loaded):
+    rod = Rod(loaded)
     with pytest.raises(FMICallException):
         rod.set(delta=2.0, epsilon=-1.0)
     # The good half of the call was not applied either.
@@ -97,16 +92,16 @@ WRONG_STATE = [
 
 
 @pytest.mark.parametrize("call, action", WRONG_STATE, ids=[c for c, _ in WRONG_STATE])
-def test_call_in_the_wrong_state_is_an_error_naming_call_and_state(unzipdir, call, action):
-    rod = Rod(unzipdir)
+def test_call_in_the_wrong_state_is_an_error_naming_call_and_state(loaded, call, action):
+    rod = Rod(loaded)
     with pytest.raises(FMICallException):
         action(rod)
     assert rod.messages[-1][2] == f"{call}: not allowed in state Instantiated"
     rod.free()
 
 
-def test_parameters_cannot_change_after_initialization(unzipdir):
-    rod = Rod(unzipdir)
+def test_parameters_cannot_change_after_initialization(loaded):
+    rod = Rod(loaded)
     rod.initialize()
     with pytest.raises(FMICallException):
         rod.set(epsilon=1e-4)
@@ -122,8 +117,8 @@ def test_parameters_cannot_change_after_initialization(unzipdir):
     (lambda rod: (rod.fmu.enterEventMode(), rod.fmu.setInteger([rod.vr["mode"]], [0])), "not a settable Integer variable"),
     (lambda rod: rod.fmu.setDebugLogging(True, ["logNonsense"]), "unknown log category 'logNonsense'"),
 ])
-def test_bad_arguments_are_errors_with_a_message(unzipdir, action, words):
-    rod = Rod(unzipdir)
+def test_bad_arguments_are_errors_with_a_message(loaded, action, words):
+    rod = Rod(loaded)
     rod.initialize()
     with pytest.raises(FMICallException):
         action(rod)
@@ -131,8 +126,8 @@ def test_bad_arguments_are_errors_with_a_message(unzipdir, action, words):
     rod.free()
 
 
-def test_nan_continuous_state_from_an_importer_is_rejected(unzipdir):
-    rod = Rod(unzipdir)
+def test_nan_continuous_state_from_an_importer_is_rejected(loaded):
+    rod = Rod(loaded)
     rod.initialize()
     x = np.array([0, 1, np.nan, 0, 1, 0.5])
     with pytest.raises(FMICallException):
@@ -141,13 +136,13 @@ def test_nan_continuous_state_from_an_importer_is_rejected(unzipdir):
     rod.free()
 
 
-def test_wrong_guid_is_refused_with_a_message(unzipdir):
+def test_wrong_guid_is_refused_with_a_message(loaded):
     with pytest.raises(Exception, match="Failed to instantiate"):
-        Rod(unzipdir, guid="{00000000-0000-0000-0000-000000000000}")
+        Rod(loaded, guid="{00000000-0000-0000-0000-000000000000}")
 
 
-def test_reset_restores_start_values_and_time(unzipdir):
-    rod = Rod(unzipdir, logging_on=True)
+def test_reset_restores_start_values_and_time(loaded):
+    rod = Rod(loaded, logging_on=True)
     rod.initialize(start_time=5.0, epsilon=1e-4, theta=1.1)
     for _ in range(50):
         rod.euler_step(1e-6)
@@ -159,8 +154,8 @@ def test_reset_restores_start_values_and_time(unzipdir):
     rod.free()
 
 
-def test_events_are_logged_with_indicator_and_modes(unzipdir):
-    rod = Rod(unzipdir)
+def test_events_are_logged_with_indicator_and_modes(loaded):
+    rod = Rod(loaded)
     rod.fmu.setDebugLogging(True, ["logEvents"])
     rod.initialize(epsilon=1e-3)
     while rod.t < 6e-3:
@@ -171,8 +166,8 @@ def test_events_are_logged_with_indicator_and_modes(unzipdir):
     rod.free()
 
 
-def run_alone(unzipdir, steps, **start):
-    rod = Rod(unzipdir)
+def run_alone(loaded, steps, **start):
+    rod = Rod(loaded)
     rod.initialize(**start)
     trajectory = []
     for _ in range(steps):
@@ -186,9 +181,9 @@ A = dict(epsilon=1e-3, delta=1.0, theta=1.0)
 B = dict(epsilon=1e-2, delta=0.3, theta=1.1, mu=2.5)
 
 
-def test_two_instances_alternately_equal_each_alone(unzipdir):
-    alone = [run_alone(unzipdir, 400, **A), run_alone(unzipdir, 400, **B)]
-    rods = [Rod(unzipdir, "a"), Rod(unzipdir, "b")]
+def test_two_instances_alternately_equal_each_alone(loaded):
+    alone = [run_alone(loaded, 400, **A), run_alone(loaded, 400, **B)]
+    rods = [Rod(loaded, "a"), Rod(loaded, "b")]
     rods[0].initialize(**A)
     rods[1].initialize(**B)
     together = [[], []]
@@ -201,13 +196,13 @@ def test_two_instances_alternately_equal_each_alone(unzipdir):
     assert not np.allclose(alone[0], alone[1])
 
 
-def test_instances_in_threads_equal_serial_runs(unzipdir):
+def test_instances_in_threads_equal_serial_runs(loaded):
     cases = [dict(epsilon=10.0**-k, theta=1.0 + 0.05 * k) for k in range(2, 6)]
-    serial = [default_experiment(unzipdir, start_values=c)["w"] for c in cases]
+    serial = [default_experiment(loaded.unzipdir, start_values=c)["w"] for c in cases]
     parallel = [None] * len(cases)
 
     def work(k):
-        parallel[k] = default_experiment(unzipdir, start_values=cases[k])["w"]
+        parallel[k] = default_experiment(loaded.unzipdir, start_values=cases[k])["w"]
 
     threads = [threading.Thread(target=work, args=(k,)) for k in range(len(cases))]
     for t in threads:

@@ -3,19 +3,13 @@ run continues bit for bit; bad bytes are refused with a message."""
 import struct
 from ctypes import POINTER, c_double
 
-import fmpy
 import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from me_driver import Rod
+from raw_instances import Rod
 
 _P = POINTER(c_double)
-
-
-@pytest.fixture(scope="module")
-def unzipdir(fmu_path, tmp_path_factory):
-    return fmpy.extract(fmu_path, tmp_path_factory.mktemp("fmu"))
 
 
 def run(rod, steps, h=1e-6):
@@ -26,8 +20,8 @@ def run(rod, steps, h=1e-6):
     return np.array(out)
 
 
-def into_stick(unzipdir):
-    rod = Rod(unzipdir)
+def into_stick(loaded):
+    rod = Rod(loaded)
     rod.initialize(epsilon=1e-4)
     while rod.fmu.getInteger([rod.vr["mode"]])[0] != 0:
         rod.euler_step(1e-6)
@@ -43,8 +37,8 @@ def resume(rod, t):
     rod.fmu.getEventIndicators(rod.z.ctypes.data_as(_P), rod.nz)
 
 
-def test_restore_during_stick_reproduces_the_run_bit_for_bit(unzipdir):
-    rod = into_stick(unzipdir)
+def test_restore_during_stick_reproduces_the_run_bit_for_bit(loaded):
+    rod = into_stick(loaded)
     t, state = rod.t, rod.fmu.getFMUstate()
     first = run(rod, 1500)          # on through the end of stick and lift-off
     assert rod.fmu.getBoolean([rod.vr["contact"]]) == [False]
@@ -55,14 +49,14 @@ def test_restore_during_stick_reproduces_the_run_bit_for_bit(unzipdir):
     rod.free()
 
 
-def test_serialized_state_continues_identically_in_a_new_instance(unzipdir):
-    rod = into_stick(unzipdir)
+def test_serialized_state_continues_identically_in_a_new_instance(loaded):
+    rod = into_stick(loaded)
     t, state = rod.t, rod.fmu.getFMUstate()
     data = rod.fmu.serializeFMUstate(state)
     first = run(rod, 1500)
     rod.fmu.freeFMUstate(state)
     rod.free()
-    fresh = Rod(unzipdir, "fresh")
+    fresh = Rod(loaded, "fresh")
     restored = fresh.fmu.deSerializeFMUstate(data)
     fresh.fmu.setFMUstate(restored)
     fresh.z, fresh.x = np.zeros(fresh.nz), np.zeros(fresh.nx)
@@ -95,11 +89,11 @@ def fnv1a(data):
 
 @pytest.mark.parametrize("how, words", [("truncated", "truncated"), ("flipped byte", "corrupted"),
                                         ("other version", "version 99"), ("other model", "state of model")])
-def test_bad_bytes_are_refused_with_a_message(unzipdir, how, words):
-    rod = Rod(unzipdir)
+def test_bad_bytes_are_refused_with_a_message(loaded, how, words):
+    rod = Rod(loaded)
     rod.initialize()
     data = rod.fmu.serializeFMUstate(rod.fmu.getFMUstate())
-    fresh = Rod(unzipdir, "fresh")
+    fresh = Rod(loaded, "fresh")
     with pytest.raises(FMICallException):
         fresh.fmu.deSerializeFMUstate(corrupt(data, how))
     assert words in fresh.messages[-1][2], fresh.messages[-1]
@@ -107,9 +101,9 @@ def test_bad_bytes_are_refused_with_a_message(unzipdir, how, words):
     fresh.free()
 
 
-def test_cosimulation_state_restores_identically(unzipdir):
-    from test_cosimulation import Slave
-    rod = Slave(unzipdir, epsilon=1e-4)
+def test_cosimulation_state_restores_identically(loaded):
+    from raw_instances import Slave
+    rod = Slave(loaded, epsilon=1e-4)
     rod.step(2.5e-4)                      # inside the IWC
     state = rod.fmu.getFMUstate()
     t0 = rod.t

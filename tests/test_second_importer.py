@@ -17,7 +17,10 @@ import fmpy
 import numpy as np
 import pytest
 
-from painleve.experiment import Case, Experiment, outcome_of
+from painleve import analytic as an
+from painleve.case import Case
+from painleve.experiment import Experiment
+from painleve.outcome import outcome_of_trajectory
 from fmi_sim import run_fmi_sim
 
 DEFAULT = Case()                                 # the modelDescription's start values
@@ -48,7 +51,7 @@ def test_the_default_experiment_is_an_iwc_under_fmi_sim(fmu_path, tmp_path):
     r = run_fmi_sim(fmu_path, tmp_path, "CS")
     stop = float(fmpy.read_model_description(fmu_path).defaultExperiment.stopTime)
     assert r["time"][-1] == pytest.approx(stop)
-    outcome = outcome_of(DEFAULT, r, exact_events=False)
+    outcome = outcome_of_trajectory(DEFAULT, r, exact_events=False)
     assert outcome.iwc
     assert abs(outcome.w_error) < theorem_bound(DEFAULT)
 
@@ -64,12 +67,12 @@ def test_co_simulation_agrees_with_fmpy_to_solver_tolerance(fmu_path, tmp_path, 
     rtol = 1e-6             # the default experiment's, which both masters pass
     for name in STATES:     # the same fmi2DoStep calls on the same FMU, up to ulps of t
         assert np.max(np.abs(ours[name] - theirs[name])) <= 10 * rtol * (1 + np.max(np.abs(ours[name])))
-    w_theirs = outcome_of(case, theirs, exact_events=False).w
-    w_ours = outcome_of(case, ours, exact_events=False).w
+    w_theirs = outcome_of_trajectory(case, theirs, exact_events=False).w
+    w_ours = outcome_of_trajectory(case, ours, exact_events=False).w
     assert w_theirs == pytest.approx(w_ours, abs=10 * rtol)
     # fmpy's CVode (ME) at rtol 1e-10 against the FMU's CVODE at 1e-6
     assert abs(w_theirs - cvode[case].w) < 10 * rtol * case.v0
-    assert abs(w_theirs / case.v0 - case.e) < theorem_bound(case)
+    assert abs(w_theirs / case.v0 - an.predict(case).e) < theorem_bound(case)
 
 
 @pytest.mark.parametrize("steps_per_epsilon", [5, 100])     # 5: fmi-sim's default, stop/500
@@ -82,8 +85,8 @@ def test_model_exchange_is_forward_euler_like_fmpys(fmu_path, tmp_path, steps_pe
     assert theirs["time"][-1] == pytest.approx(ours["time"][-1])
     for name in STATES:
         assert theirs[name][-1] == pytest.approx(ours[name][-1], rel=1e-9, abs=1e-12)
-    w_theirs = outcome_of(DEFAULT, theirs, exact_events=False).w
-    w_ours = outcome_of(DEFAULT, ours, exact_events=False).w
+    w_theirs = outcome_of_trajectory(DEFAULT, theirs, exact_events=False).w
+    w_ours = outcome_of_trajectory(DEFAULT, ours, exact_events=False).w
     assert w_theirs == pytest.approx(w_ours, rel=1e-8)
 
 
@@ -93,11 +96,11 @@ def test_model_exchange_converges_to_cvode_as_eulers_step_shrinks(fmu_path, tmp_
     errors = {}
     for steps in (5, 100):
         r = run_fmi_sim(fmu_path, tmp_path, "ME", output_interval=DEFAULT.epsilon / steps)
-        outcome = outcome_of(DEFAULT, r, exact_events=False)
+        outcome = outcome_of_trajectory(DEFAULT, r, exact_events=False)
         assert outcome.iwc
         errors[steps] = abs(outcome.w - cvode[DEFAULT].w)
     assert errors[100] < errors[5] / 10
-    assert errors[100] < 0.03 * DEFAULT.e * DEFAULT.v0
+    assert errors[100] < 0.03 * an.predict(DEFAULT).e * DEFAULT.v0
 
 
 def test_fmi_sim_refuses_what_the_fmu_refuses(fmu_path, tmp_path):

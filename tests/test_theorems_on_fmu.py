@@ -5,8 +5,11 @@ import math
 import numpy as np
 import pytest
 
+from painleve import acceptance
 from painleve import analytic as an
-from painleve.experiment import Case, Experiment, SimulationError, run_iwc
+from painleve.case import Case
+from painleve.experiment import Experiment, run_iwc
+from painleve.outcome import SimulationError
 from painleve.studies import convergence, separatrix
 
 
@@ -36,27 +39,18 @@ THEOREM1_CASES = [(p, [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7]) for p in WIDE] + \
 @pytest.mark.parametrize("params, epsilons", THEOREM1_CASES)
 def test_theorem1_errors_shrink_as_eps_decreases(experiment, params, epsilons, delta):
     phi0 = 0.5
-    epsilons = theorem1_epsilons(epsilons, delta)
     case = Case(phi0=phi0, v0=1.0, delta=delta, **params)
     assert an.quadrant(case.theta0, phi0, alpha=case.alpha, mu=case.mu) == "inconsistent"
-    assert_theorem1_converges(convergence(experiment, case, epsilons), case)
+    assert_theorem1_converges(convergence(experiment, case, acceptance.in_regime(epsilons, delta)))
 
 
-def theorem1_epsilons(epsilons, delta):
-    """The asymptotic regime: gravity acts over a stick of fast time ~ delta while e ~ delta^-2, so eps delta^3 << 1."""
-    return [eps for eps in epsilons if eps * (1 + delta) ** 3 <= 2e-2]
-
-
-def assert_theorem1_converges(study, case):
+def assert_theorem1_converges(study):
     """Theorem 1's acceptance (also for the SUNDIALS 7 build, tests/test_sundials7.py)."""
-    assert all(o.iwc for o in study.outcomes)
-    for name in ("w", "phi", "v"):
-        err = np.abs(study.errors(name))
-        assert np.all(np.diff(err[1:]) < 0), f"{name} errors must fall with eps:\n{study.table()}"
-        # o(1): about eps ln(1/eps), a log-log slope a little under 1 (v faster when delta = 0:
-        # the return to y = 0 is then the lift-off itself)
-        assert study.rate(name) > 0.6, study.table()
-    assert abs(study.errors("w")[-1]) < 0.02 * case.e, study.table()
+    # validate's rule (acceptance.py): IWC, w and phi within 1% at the smallest eps, falling with eps
+    assert not acceptance.theorem1_failures(study.outcomes), study.table()
+    # and v (tangential velocity at the return, predicted 0) falls too: about eps ln(1/eps), faster when
+    # delta = 0 (the return to y = 0 is then the lift-off itself)
+    assert not acceptance.convergence_failures(study.epsilons, study.errors("v"), tolerance=math.inf), study.table()
 
 
 @pytest.mark.parametrize("params", [WIDE[1], THIN[0]])
@@ -65,36 +59,47 @@ def test_iwc_duration_follows_eps_ln_over_lambda_plus(experiment, params):
     assert study.duration_slope == pytest.approx(study.predicted_duration_slope, rel=0.05), study.table()
 
 
-def test_theorem1_phases_compress_stick_lift_off(experiment):
-    o = experiment.run(Case(epsilon=1e-5))
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+@pytest.mark.parametrize("delta", [0.0, 1.0])
+def test_theorem1_phases_compress_stick_lift_off_fly_back(fmu_path, fmi_type, delta):
+    with Experiment(fmu_path, fmi_type=fmi_type) as ex:
+        o = ex.run(Case(epsilon=1e-5, delta=delta))
     assert o.iwc and o.events == 3
     assert o.compression > 0 and o.stick > 0 and o.lift_off > 0
+    # the rod starts in contact (touch-down at t = 0), so the phases fill the run
+    assert o.compression + o.stick + o.lift_off + o.flight_back == pytest.approx(o.t_return, rel=1e-12)
+    if delta == 0:      # F_N = 0 is y = 0: contact ends at the return itself
+        assert o.flight_back == 0
+    else:               # damping ends the force while the end is still below the floor, moving up
+        assert o.flight_back > 0
     # each phase is O(eps ln 1/eps) or shorter
-    assert o.t_return < 20 * o.case.time_scale
+    assert o.t_return < 20 * an.predict(o.case).time_scale
 
 
 VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, alpha=3.0, mu=3.0)
 
 
-@pytest.mark.parametrize("epsilon", [1e-3, 1e-4, 1e-5])
-def test_theorem2_below_separatrix_iwc_above_lift_off(experiment, epsilon):
-    case = Case(epsilon=epsilon, **VIDEO)
+@pytest.mark.parametrize("factor", [1.2, 1.5])
+def test_theorem2_below_separatrix_iwc_above_lift_off(experiment, factor):
+    # validate's rules (acceptance.py): below w1* the IWC of Theorem 1 (w/v0 -> e), above it lift-off, w = O(eps)
+    case = Case(**VIDEO)
     assert an.quadrant(case.theta0, case.phi0, alpha=3, mu=3) == "indeterminate"
-    w1s = case.w1_star
-    below = experiment.run(Case(epsilon=epsilon, w10=1.2 * w1s, **VIDEO))
-    above = experiment.run(Case(epsilon=epsilon, w10=0.8 * w1s, **VIDEO))
-    assert below.iwc and below.w == pytest.approx(case.e, rel=0.05)
-    assert not above.iwc and 0 < above.w < 5 * epsilon          # w = O(eps)
+    w1s = an.predict(case).w1_star
+    epsilons = (1e-3, 1e-4, 1e-5)
+    below = [experiment.run(Case(epsilon=eps, w10=factor * w1s, **VIDEO)) for eps in epsilons]
+    above = [experiment.run(Case(epsilon=eps, w10=w1s / factor, **VIDEO)) for eps in epsilons]
+    assert not acceptance.theorem1_failures(below), [o.w for o in below]
+    assert not acceptance.lift_off_failures(above), [o.w for o in above]
 
 
 def test_theorem2_boundary_found_by_bisection_approaches_w1_star(experiment):
-    w1s = Case(**VIDEO).w1_star
+    w1s = an.predict(Case(**VIDEO)).w1_star
     gaps = []
     for epsilon in (1e-3, 1e-4, 1e-5):
         boundary = separatrix(experiment, Case(epsilon=epsilon, **VIDEO), lower=1.5 * w1s, upper=0.5 * w1s)
-        gaps.append(abs(boundary - w1s))
+        gaps.append(acceptance.separatrix_gap(boundary, w1s))
     assert gaps[1] < gaps[0] and gaps[2] < gaps[1]
-    assert gaps[-1] < 0.01 * abs(w1s)
+    assert gaps[-1] <= acceptance.SEPARATRIX_TOLERANCE / 2     # validate's rule, with room to spare
 
 
 @pytest.mark.parametrize("case, words", [

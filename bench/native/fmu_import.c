@@ -3,7 +3,6 @@
  * skipped), not by a general XML parser. */
 #include "fmu_import.h"
 
-#include <dlfcn.h>
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -287,22 +286,6 @@ static bool parse_description(FmuImport *fmu, const char *md_path, char *err, si
     return ok;
 }
 
-static bool load_library(FmuImport *fmu, char *err, size_t n)
-{
-    fmu->handle = dlopen(fmu->library_path, RTLD_NOW | RTLD_LOCAL);
-    if (!fmu->handle) FAIL("dlopen failed: %s", dlerror());
-    /* POSIX's way from dlsym's void * to a function pointer. */
-#define FMU_IMPORT_LOOKUP(name)                                                                         \
-    {                                                                                                   \
-        void *sym = dlsym(fmu->handle, "fmi2" #name);                                                   \
-        if (!sym) FAIL("%s does not export fmi2" #name ": not an FMI 2.0 Model Exchange library", fmu->library_path); \
-        memcpy(&fmu->name, &sym, sizeof sym);                                                           \
-    }
-    FMU_IMPORT_FUNCTIONS(FMU_IMPORT_LOOKUP)
-#undef FMU_IMPORT_LOOKUP
-    return true;
-}
-
 static bool ends_with(const char *s, const char *suffix)
 {
     const size_t ns = strlen(s), nf = strlen(suffix);
@@ -355,12 +338,12 @@ bool fmu_import_open(FmuImport *fmu, const char *path, char *err, size_t n)
         if (!fmu->library_path) FAIL("out of memory");
     }
     if (!(fmu->resource_uri = join("file://", fmu->fmu_dir, "/resources"))) FAIL("out of memory");
-    return load_library(fmu, err, n);
+    return fmi2_functions_load(&fmu->fmi, fmu->library_path, true, false, err, n);
 }
 
 void fmu_import_close(FmuImport *fmu)
 {
-    if (fmu->handle) dlclose(fmu->handle);
+    fmi2_functions_unload(&fmu->fmi);
     for (size_t i = 0; i < fmu->n_variables; ++i) free(fmu->variables[i].name);
     free(fmu->variables);
     free(fmu->state_vr);

@@ -1,7 +1,8 @@
 /* Loading an FMI 2.0 Model Exchange FMU as an importer does: the facts the
  * driver needs from modelDescription.xml (GUID, model identifier, value
  * references by name, states and derivatives in state order, the number of
- * event indicators) and the fmi2* functions from the shared library (dlopen). */
+ * event indicators) and the fmi2* functions from the shared library (dlopen, by
+ * importer/fmi2_functions.c, as the tests' C driver does). */
 #ifndef FMU_IMPORT_H
 #define FMU_IMPORT_H
 
@@ -9,14 +10,7 @@
 #include <stddef.h>
 
 #include "fmi2FunctionTypes.h"
-
-/* The functions of Model Exchange that the driver calls. */
-#define FMU_IMPORT_FUNCTIONS(X)                                                                         \
-    X(Instantiate) X(FreeInstance) X(SetupExperiment) X(EnterInitializationMode)                        \
-    X(ExitInitializationMode) X(Terminate) X(Reset) X(GetReal) X(GetInteger) X(GetBoolean) X(SetReal) \
-    X(GetDirectionalDerivative) X(EnterEventMode) X(NewDiscreteStates) X(EnterContinuousTimeMode)     \
-    X(CompletedIntegratorStep) X(SetTime) X(SetContinuousStates) X(GetDerivatives)                    \
-    X(GetEventIndicators) X(GetContinuousStates) X(GetNominalsOfContinuousStates)
+#include "fmi2_functions.h"
 
 typedef struct {
     char *name;
@@ -37,11 +31,8 @@ typedef struct {
     char *fmu_dir;         /* the extracted FMU's root, or NULL */
     char *library_path;
     char *resource_uri;    /* file:// URI of fmu_dir/resources (or of the library's folder) */
-    /* the library */
-    void *handle;
-#define FMU_IMPORT_FIELD(name) fmi2##name##TYPE *name;
-    FMU_IMPORT_FUNCTIONS(FMU_IMPORT_FIELD)
-#undef FMU_IMPORT_FIELD
+    /* the library's functions (the project's one C loader, importer/) */
+    Fmi2Functions fmi;
 } FmuImport;
 
 /* `path` is an extracted FMU directory or the shared library itself, inside

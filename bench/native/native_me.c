@@ -105,11 +105,11 @@ static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status
 
 static int set_time_and_states(Driver *d, sunrealtype t, N_Vector y)
 {
-    if (!OK(d->fmu.SetTime(d->c, t))) {
+    if (!OK(d->fmu.fmi.SetTime(d->c, t))) {
         d->failed_call = "fmi2SetTime";
         return -1;
     }
-    if (!OK(d->fmu.SetContinuousStates(d->c, N_VGetArrayPointer(y), d->fmu.nx))) {
+    if (!OK(d->fmu.fmi.SetContinuousStates(d->c, N_VGetArrayPointer(y), d->fmu.nx))) {
         d->failed_call = "fmi2SetContinuousStates";
         return -1;
     }
@@ -120,7 +120,7 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
 {
     Driver *d = data;
     if (set_time_and_states(d, t, y)) return -1;
-    if (!OK(d->fmu.GetDerivatives(d->c, N_VGetArrayPointer(ydot), d->fmu.nx))) {
+    if (!OK(d->fmu.fmi.GetDerivatives(d->c, N_VGetArrayPointer(ydot), d->fmu.nx))) {
         d->failed_call = "fmi2GetDerivatives";
         return -1;
     }
@@ -131,7 +131,7 @@ static int roots(sunrealtype t, N_Vector y, sunrealtype *z, void *data)
 {
     Driver *d = data;
     if (set_time_and_states(d, t, y)) return -1;
-    if (!OK(d->fmu.GetEventIndicators(d->c, z, d->fmu.nz))) {
+    if (!OK(d->fmu.fmi.GetEventIndicators(d->c, z, d->fmu.nz))) {
         d->failed_call = "fmi2GetEventIndicators";
         return -1;
     }
@@ -149,7 +149,7 @@ static int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *d
     const double one = 1.0;
     for (size_t j = 0; j < nx; ++j) {
         sunrealtype *column = SM_COLUMN_D(J, (sunindextype)j);
-        if (!OK(d->fmu.GetDirectionalDerivative(d->c, d->fmu.derivative_vr, nx, &d->fmu.state_vr[j], 1, &one,
+        if (!OK(d->fmu.fmi.GetDirectionalDerivative(d->c, d->fmu.derivative_vr, nx, &d->fmu.state_vr[j], 1, &one,
                                                 column))) {
             d->failed_call = "fmi2GetDirectionalDerivative";
             return -1;
@@ -234,7 +234,7 @@ static int driver_open(Driver *d, const char *path, int analytic, char *err, siz
     if (!create_cvode(d, err, n)) return 0;
     d->callbacks = (fmi2CallbackFunctions){ .logger = logger, .allocateMemory = calloc, .freeMemory = free,
                                             .stepFinished = NULL, .componentEnvironment = d };
-    d->c = d->fmu.Instantiate("native_me", fmi2ModelExchange, d->fmu.guid, d->fmu.resource_uri, &d->callbacks,
+    d->c = d->fmu.fmi.Instantiate("native_me", fmi2ModelExchange, d->fmu.guid, d->fmu.resource_uri, &d->callbacks,
                               fmi2False, fmi2False);
     if (!d->c)
         FAIL("fmi2Instantiate failed%s%s", d->fmu_message[0] ? ": " : " (no message)", d->fmu_message);
@@ -243,7 +243,7 @@ static int driver_open(Driver *d, const char *path, int analytic, char *err, siz
 
 static void driver_close(Driver *d)
 {
-    if (d->c) d->fmu.FreeInstance(d->c);
+    if (d->c) d->fmu.fmi.FreeInstance(d->c);
     if (d->cvode) CVodeFree(&d->cvode);
     if (d->solver) SUNLinSolFree(d->solver);
     if (d->A) SUNMatDestroy(d->A);
@@ -267,7 +267,7 @@ static int fmu_failed(Driver *d, const char *call, char *err, size_t n)
 }
 
 #define CALL(name, ...) \
-    if (!OK(d->fmu.name(__VA_ARGS__))) return fmu_failed(d, "fmi2" #name, err, n)
+    if (!OK(d->fmu.fmi.name(__VA_ARGS__))) return fmu_failed(d, "fmi2" #name, err, n)
 
 /* lambda_+ of eq lambdapm with p = p_+(theta0); NaN unless p_+ < 0. */
 static double lambda_plus(const Case *k)

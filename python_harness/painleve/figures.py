@@ -17,9 +17,10 @@ from dataclasses import replace
 import numpy as np
 
 from . import analytic as an
-from .experiment import Case, Experiment, outcome_of
+from .case import Case
+from .experiment import Experiment
+from .outcome import outcome_of_trajectory
 from .report import to_json
-from .runs import Rig
 
 FIGURES = ("GB", "eDelta0", "video")
 
@@ -40,28 +41,28 @@ def _what_the_rod_does(r):
     return "left" if up else "stays"
 
 
-def gb_quadrant(rig, theta, phi, p=GB):
+def gb_quadrant(experiment, theta, phi, p=GB):
     """The quadrant of (theta, phi) as the FMU's rod shows it, from one or two runs."""
     start = dict(alpha=p["alpha"], mu=p["mu"], delta=p["delta"], epsilon=p["epsilon"],
                  x=0.0, y=0.0, w=0.0, v=p["v0"], theta=theta, phi=phi)
     run = dict(stop_time=p["horizon"], output_interval=p["horizon"] / 100)
-    first = _what_the_rod_does(rig.run(start, **run))
+    first = _what_the_rod_does(experiment.simulate_from(start, **run))
     if first != "left":
         return {"IWC": "inconsistent", "stays": "slipping"}[first]
     # It lifted off. Knock the floor at w = -eps W: W >= 2|w1*| wherever a separatrix exists
     # (|w1*| = b/lambda_+ <= b/sqrt|p_+|), an O(1) knock in the contact's scale.
     knock = 2 * an.b(theta, phi) / math.sqrt(abs(an.p_plus(theta, alpha=p["alpha"], mu=p["mu"]))) + 1
-    second = _what_the_rod_does(rig.run(dict(start, w=-p["epsilon"] * knock), **run))
+    second = _what_the_rod_does(experiment.simulate_from(dict(start, w=-p["epsilon"] * knock), **run))
     return "indeterminate" if second == "IWC" else "lift-off"
 
 
-def gb_data(rig, thetas=GB_THETAS, phis=GB_PHIS):
+def gb_data(experiment, thetas=GB_THETAS, phis=GB_PHIS):
     p = GB
     points = []
     for theta in thetas:
         for phi in phis:
             theta, phi = float(theta), float(phi)
-            points.append(dict(theta=theta, phi=phi, simulated=gb_quadrant(rig, theta, phi),
+            points.append(dict(theta=theta, phi=phi, simulated=gb_quadrant(experiment, theta, phi),
                                analytic=str(an.quadrant(theta, phi, alpha=p["alpha"], mu=p["mu"])),
                                b=float(an.b(theta, phi)), p_plus=float(an.p_plus(theta, alpha=p["alpha"], mu=p["mu"]))))
     t1 = float(an.theta_1(alpha=p["alpha"], mu=p["mu"]))
@@ -93,8 +94,9 @@ def edelta0_data(experiment):
         for delta in E_DELTAS:
             case = Case(theta0=theta0, delta=delta, epsilon=E_EPSILONS[-1], **E)
             o = experiment.run(case)
+            e = an.predict(case).e
             b.append(dict(theta0=theta0, delta=delta, epsilon=case.epsilon, e_simulated=o.w / case.v0,
-                          e_analytic=case.e, rel_error=o.w_error / case.e))
+                          e_analytic=e, rel_error=o.w_error / e))
     return dict(params=E, theta_1=float(t1), theta_2=float(t2), a=a, b=b)
 
 
@@ -132,7 +134,7 @@ def video_rods(p=VIDEO):
     return w1s, rods
 
 
-def video_data(rig, p=VIDEO):
+def video_data(experiment, p=VIDEO):
     w1s, rods = video_rods(p)
     params = dict(alpha=p["alpha"], mu=p["mu"], delta=p["delta"], epsilon=p["epsilon"])
     pp = float(an.p_plus(p["theta"], alpha=p["alpha"], mu=p["mu"]))
@@ -144,14 +146,14 @@ def video_data(rig, p=VIDEO):
     a, b_ = rods["green"]["start"], rods["blue"]["start"]
     out["separation_at_t0"] = math.hypot(a["y"] - b_["y"], a["w"] - b_["w"])
     for name, rod in rods.items():
-        r = rig.run({**params, **rod["start"]}, stop_time=p["stop_time"], output_interval=p["epsilon"] / 20,
-                    relative_tolerance=1e-10, outputs=["x", "v", "y", "w", "theta", "phi", "mode", "contact"])
+        r = experiment.simulate_from({**params, **rod["start"]}, stop_time=p["stop_time"],
+                                     output_interval=p["epsilon"] / 20, relative_tolerance=1e-10)
         contact = r["contact"].astype(bool)
         touch = int(np.flatnonzero(contact)[0])
         at = {k: float(r[k][touch]) for k in ("time", "v", "w", "theta", "phi")}
         case = Case(theta0=at["theta"], phi0=at["phi"], v0=at["v"], delta=p["delta"], epsilon=p["epsilon"],
                     w10=at["w"] / p["epsilon"], alpha=p["alpha"], mu=p["mu"])
-        o = outcome_of(case, r[touch:])
+        o = outcome_of_trajectory(case, r[touch:])
         in_contact = r[contact]
         out["rods"][name] = dict(
             w10=rod["w10"], start=rod["start"], touch=at, iwc=o.iwc, w_return=o.w, t_return=o.t_return,
@@ -169,15 +171,15 @@ def make_figures(fmu_path, out_dir, *, only=None, dpi=150):
     out.mkdir(parents=True, exist_ok=True)
     names = list(only or FIGURES)
     numbers, written = {}, []
-    with Rig(fmu_path) as rig, Experiment(fmu_path) as experiment:
+    with Experiment(fmu_path) as experiment:
         if "GB" in names:
-            numbers["GB"] = gb_data(rig)
+            numbers["GB"] = gb_data(experiment)
             written.append(plots.plot_gb(numbers["GB"], out / "fig_GB.png", dpi=dpi))
         if "eDelta0" in names:
             numbers["eDelta0"] = edelta0_data(experiment)
             written.append(plots.plot_edelta0(numbers["eDelta0"], out / "fig_eDelta0.png", dpi=dpi))
         if "video" in names:
-            numbers["video"] = video_data(rig)
+            numbers["video"] = video_data(experiment)
             written.append(plots.plot_video(numbers["video"], out / "fig_video.png", dpi=dpi))
             numbers["video"].pop("trajectories")
     (out / "figures.json").write_text(to_json(numbers, indent=1))

@@ -4,11 +4,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-
-
-def power_rate(epsilons, errors):
-    """Slope of log|error| against log(eps): the order at which an error falls."""
-    return float(np.polyfit(np.log(epsilons), np.log(np.abs(errors)), 1)[0])
+from .acceptance import power_rate
+from .analytic import predict
 
 
 @dataclass(frozen=True)
@@ -37,7 +34,7 @@ class Convergence:
 
     @property
     def predicted_duration_slope(self):
-        return 1 / self.outcomes[0].case.lambda_plus
+        return 1 / predict(self.outcomes[0].case).lambda_plus
 
     def table(self):
         rows = [f"{'eps':>8} {'w/v0 - e':>11} {'phi err':>11} {'v':>11} {'t_return':>10} {'events':>6}"]

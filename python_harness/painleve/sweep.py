@@ -12,7 +12,6 @@ import atexit
 import contextlib
 import hashlib
 import logging
-import math
 import os
 import pathlib
 import signal
@@ -24,7 +23,8 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from . import analytic as an
-from .experiment import Experiment, SimulationError
+from .experiment import Experiment
+from .outcome import SimulationError
 from .sweepstore import ResultStore, as_frame
 
 
@@ -40,12 +40,12 @@ class FmuBlob:
         return cls(hashlib.sha256(data).hexdigest(), data)
 
 
-_EXPERIMENTS = {}   # in each process: (FMU digest, interface) -> Experiment
+_EXPERIMENTS = {}   # in each process: (FMU digest, fmi_type) -> Experiment
 
 
-def experiment_for(blob, interface):
+def experiment_for(blob, fmi_type):
     """This process's Experiment for the FMU `blob`, created on first use."""
-    key = (blob.digest, interface)
+    key = (blob.digest, fmi_type)
     if key not in _EXPERIMENTS:
         path = os.path.join(tempfile.gettempdir(), f"painleve-{blob.digest[:16]}.fmu")
         if not os.path.exists(path):
@@ -53,7 +53,7 @@ def experiment_for(blob, interface):
             with open(tmp, "wb") as f:
                 f.write(blob.data)
             os.replace(tmp, path)
-        _EXPERIMENTS[key] = Experiment(path, interface=interface)
+        _EXPERIMENTS[key] = Experiment(path, fmi_type=fmi_type)
     return _EXPERIMENTS[key]
 
 
@@ -64,20 +64,11 @@ def _close_experiments():
     _EXPERIMENTS.clear()
 
 
-def _try(f):
-    try:
-        return f()
-    except (ValueError, ArithmeticError):
-        return math.nan
-
-
 def predictions(case):
-    """The paper's predictions for a case, NaN where its hypotheses fail."""
-    w1s = _try(lambda: case.w1_star)
-    return dict(theorem=case.theorem, e=_try(lambda: case.e), predicted_w=_try(lambda: case.e * case.v0),
-                predicted_phi=_try(lambda: case.predicted_phi), w1_star=w1s,
-                predicts_iwc=None if (case.theorem == 2 and math.isnan(w1s)) else bool(case.predicts_iwc),
-                time_scale=_try(lambda: case.time_scale))
+    """The paper's predictions for a case as result columns, NaN where its hypotheses fail."""
+    p = an.predict(case)
+    return dict(theorem=p.theorem, e=p.e, predicted_w=p.e * case.v0, predicted_phi=p.phi, w1_star=p.w1_star,
+                predicts_iwc=p.iwc, time_scale=p.time_scale)
 
 
 def case_row(experiment, case, case_id):
@@ -97,9 +88,9 @@ def case_row(experiment, case, case_id):
     return {**row, **outcome.as_row(), "status": "ok"}
 
 
-def run_batch(spec, ids, blob, interface="ME"):
+def run_batch(spec, ids, blob, fmi_type="ModelExchange"):
     """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
-    experiment = experiment_for(blob, interface)
+    experiment = experiment_for(blob, fmi_type)
     return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
 
 
@@ -123,12 +114,12 @@ def _progress(total, initial, enabled):
                 dynamic_ncols=True, mininterval=0.5, smoothing=0.05)
 
 
-def run_sweep(spec, fmu_path, out, *, interface="ME", scheduler=None, workers=2, batch=200, serial=False,
+def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, workers=2, batch=200, serial=False,
               progress=True, say=lambda text: print(text, file=sys.stderr)):
     """Runs every case of `spec` not yet in `out`; returns a SweepResult."""
     blob = FmuBlob.read(fmu_path)
     store = ResultStore(out)
-    done = store.open({**spec.describe(), "fmu_sha256": blob.digest, "interface": interface})
+    done = store.open({**spec.describe(), "fmu_sha256": blob.digest, "fmi_type": fmi_type})
     remaining = np.setdiff1d(np.arange(spec.total, dtype=np.int64), done)
     if len(done):
         say(f"resuming {out}: {len(done)} of {spec.total} cases already done, {len(remaining)} to run")
@@ -139,11 +130,11 @@ def run_sweep(spec, fmu_path, out, *, interface="ME", scheduler=None, workers=2,
             pass
         elif serial:
             for ids in batches:
-                df = run_batch(spec, ids, blob, interface)
+                df = run_batch(spec, ids, blob, fmi_type)
                 store.append(df)
                 bar.update(len(df))
         else:
-            _run_on_dask(spec, batches, blob, interface, store, bar, scheduler=scheduler, workers=workers, say=say)
+            _run_on_dask(spec, batches, blob, fmi_type, store, bar, scheduler=scheduler, workers=workers, say=say)
     return SweepResult(total=spec.total, skipped=len(done), ran=len(remaining),
                        seconds=time.monotonic() - start, out=str(out))
 
@@ -173,7 +164,7 @@ def _workers_ignore_ctrl_c():
         signal.signal(signal.SIGINT, previous)
 
 
-def _run_on_dask(spec, batches, blob, interface, store, bar, *, scheduler, workers, say):
+def _run_on_dask(spec, batches, blob, fmi_type, store, bar, *, scheduler, workers, say):
     from dask.distributed import as_completed
     client, cluster = _connect(scheduler, workers)
     try:
@@ -182,7 +173,7 @@ def _run_on_dask(spec, batches, blob, interface, store, bar, *, scheduler, worke
         blob_future = client.scatter(blob, broadcast=True, hash=False)
 
         def submit(ids):
-            return client.submit(run_batch, spec, ids, blob_future, interface, pure=False)
+            return client.submit(run_batch, spec, ids, blob_future, fmi_type, pure=False)
         # Keep a few batches per worker in flight: enough to stay busy, few enough to stop quickly.
         queue = as_completed([submit(ids) for _, ids in zip(range(3 * n_workers), batches)])
         for future in queue:

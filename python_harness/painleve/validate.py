@@ -12,29 +12,23 @@ that ships the FMU runs (`painleve validate FMU`).
    separatrix w1*, lift-off with w = O(eps) above it, and the boundary found by
    bisection on the FMU close to w1*.
 
-Thresholds come from the physics, not from one build's numbers: the error
-of Theorem 1 is O(eps ln 1/eps) (measured 1e-3 of e or less at eps = 1e-6 in
-the thin wedge mu = 1.4, 1e-5 in the wide one), so an FMU is within 1% of e at
-eps = 1e-6 and its errors fall as eps falls; a wrong constant in the physics
-leaves an error that does not fall (a 25% error in S_w leaves 2 to 20% at eps = 1e-6).
+The acceptance rules and their thresholds are acceptance.py's, shared with the tests.
 Each interface the FMU declares (Model Exchange, Co-Simulation) is checked."""
 import math
 from dataclasses import asdict, replace
 
 import numpy as np
 
+from . import acceptance
 from . import analytic as an
-from .experiment import Case, Experiment, SimulationError
+from .case import Case
+from .experiment import FMI_TYPES, Experiment
+from .outcome import SimulationError
 from .report import Check
 from .studies import separatrix
 from .validate_static import default_experiment_check, static_checks
 
 EPSILONS = (1e-4, 1e-5, 1e-6)
-REL_TOL = 0.01          # |w/v0 - e| / e and |phi error| / |phi jump| at the smallest eps
-NOISE = 1e-4            # relative errors below this count as converged (solver tolerance ~1e-8)
-LIFT_OFF_W = 5.0        # above w1*: w <= LIFT_OFF_W * eps
-SEPARATRIX_TOL = 0.02   # bisected boundary within 2% of w1* at eps = 1e-5
-REGIME = 2e-2           # the asymptotic regime: eps (1 + delta)^3 <= 2e-2 (stick time ~ delta, e ~ delta^-2)
 
 
 # ------------------------------------------------------------------ the cases
@@ -86,48 +80,43 @@ def _label(case):
             f"v0={case.v0:.3g} delta={case.delta:.3g}")
 
 
-def _falling(errors):
-    """Errors fall with eps (or are already at the solver's noise)."""
-    errors = np.abs(errors)
-    return bool(errors[-1] <= NOISE or errors[-1] < 0.5 * errors[0])
-
-
 # ------------------------------------------------------------------ the checks
 def theorem1_check(experiment, name, case, interface):
-    epsilons = [eps for eps in EPSILONS if eps * (1 + case.delta) ** 3 <= REGIME]
+    epsilons = acceptance.in_regime(EPSILONS, case.delta)
     cid = f"theorem1/{interface}/{name}"
     try:
         outs = [experiment.run(replace(case, epsilon=eps)) for eps in epsilons]
     except SimulationError as err:
         return Check(cid, f"Theorem 1, {_label(case)}", f"simulation failed: {err}", "IWC", False)
-    w_err = np.array([o.w_error / case.e for o in outs])
-    jump = abs(case.predicted_phi - case.phi0)
-    phi_err = np.array([o.phi_error / jump for o in outs])
+    predicted = an.predict(case)
+    w_err = np.array([o.w_error / predicted.e for o in outs])
+    phi_err = np.array([o.phi_error / abs(predicted.phi - case.phi0) for o in outs])
     iwc = all(o.iwc for o in outs)
-    passed = (iwc and abs(w_err[-1]) <= REL_TOL and abs(phi_err[-1]) <= REL_TOL
-              and _falling(w_err) and _falling(phi_err))
+    failures = acceptance.theorem1_failures(outs)
     measured = (f"(w/v0-e)/e = {', '.join(f'{x:+.1e}' for x in w_err)}; phi err/jump = {phi_err[-1]:+.1e}"
                 + ("" if iwc else "; no IWC at some eps"))
     return Check(cid, f"Theorem 1, {_label(case)}, eps = {', '.join(f'{e:g}' for e in epsilons)}", measured,
-                 f"IWC; |err| <= {REL_TOL:.0%} at eps={epsilons[-1]:g}; errors fall with eps", passed,
-                 dict(epsilons=epsilons, w_rel_errors=w_err.tolist(), phi_rel_errors=phi_err.tolist(), iwc=iwc,
-                      e=case.e, case=asdict(case)))
+                 f"IWC; |err| <= {acceptance.ERROR_AT_SMALLEST_EPS:.0%} at eps={epsilons[-1]:g}; errors fall with eps",
+                 not failures, dict(epsilons=epsilons, w_rel_errors=w_err.tolist(), phi_rel_errors=phi_err.tolist(),
+                                    iwc=iwc, e=predicted.e, case=asdict(case), failures=failures))
 
 
 def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
-    w1s = state.w1_star
+    predicted = an.predict(state)
+    w1s = predicted.w1_star
     checks = []
     below, above = replace(state, w10=1.5 * w1s), replace(state, w10=0.5 * w1s)
     cid = f"theorem2/{interface}/{name}"
+    tolerance = acceptance.ERROR_AT_SMALLEST_EPS
     try:
         outs = [experiment.run(replace(below, epsilon=eps)) for eps in epsilons]
-        w_err = np.array([o.w_error / state.e for o in outs])
+        w_err = np.array([o.w_error / predicted.e for o in outs])
         iwc = all(o.iwc for o in outs)
         checks.append(Check(
             f"{cid}/below", f"Theorem 2 below w1* = {w1s:.4f} (w10 = 1.5 w1*), {_label(state)}",
             f"IWC {iwc}; (w/v0-e)/e = {', '.join(f'{x:+.1e}' for x in w_err)}",
-            f"IWC; |err| <= {REL_TOL:.0%} at eps={epsilons[-1]:g}; errors fall",
-            iwc and abs(w_err[-1]) <= REL_TOL and _falling(w_err),
+            f"IWC; |err| <= {tolerance:.0%} at eps={epsilons[-1]:g}; errors fall",
+            not acceptance.theorem1_failures(outs),
             dict(epsilons=list(epsilons), w_rel_errors=w_err.tolist(), iwc=iwc, w1_star=w1s, case=asdict(below))))
         outs = [experiment.run(replace(above, epsilon=eps)) for eps in epsilons]
         ratio = np.array([o.w / eps for o, eps in zip(outs, epsilons)])
@@ -135,8 +124,8 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
         checks.append(Check(
             f"{cid}/above", f"Theorem 2 above w1* = {w1s:.4f} (w10 = 0.5 w1*), {_label(state)}",
             f"IWC {stuck}; w/eps = {', '.join(f'{x:.3g}' for x in ratio)}",
-            f"lift-off without sticking; 0 < w <= {LIFT_OFF_W:g} eps",
-            (not stuck) and bool(np.all((ratio > 0) & (ratio <= LIFT_OFF_W))),
+            f"lift-off without sticking; 0 < w <= {acceptance.LIFT_OFF_W:g} eps",
+            not acceptance.lift_off_failures(outs),
             dict(epsilons=list(epsilons), w_over_eps=ratio.tolist(), iwc=stuck, w1_star=w1s, case=asdict(above))))
     except SimulationError as err:
         checks.append(Check(cid, f"Theorem 2, {_label(state)}", f"simulation failed: {err}", "runs", False))
@@ -144,23 +133,24 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
 
 
 def separatrix_check(experiment, name, state, interface, epsilon=1e-5):
-    w1s = state.w1_star
+    w1s = an.predict(state).w1_star
     cid = f"separatrix/{interface}/{name}"
     try:
         found = separatrix(experiment, replace(state, epsilon=epsilon), lower=2.0 * w1s, upper=0.5 * w1s,
                            tolerance=1e-3)
     except (ValueError, SimulationError) as err:
         return Check(cid, f"Theorem 2 separatrix at eps={epsilon:g}", f"bisection failed: {err}", "found", False)
-    gap = abs(found - w1s) / abs(w1s)
+    gap = acceptance.separatrix_gap(found, w1s)
     return Check(cid, f"Theorem 2 separatrix bisected on the FMU at eps={epsilon:g}, {_label(state)}",
-                 f"w10 boundary {found:.4f} vs w1* {w1s:.4f} ({gap:.1%})", f"within {SEPARATRIX_TOL:.0%} of w1*",
-                 gap <= SEPARATRIX_TOL, dict(found=found, w1_star=w1s, relative_gap=gap))
+                 f"w10 boundary {found:.4f} vs w1* {w1s:.4f} ({gap:.1%})",
+                 f"within {acceptance.SEPARATRIX_TOLERANCE:.0%} of w1*", gap <= acceptance.SEPARATRIX_TOLERANCE,
+                 dict(found=found, w1_star=w1s, relative_gap=gap))
 
 
 def dynamic_checks(fmu_path, interface, *, sample=24, progress=None):
     checks = []
     try:
-        experiment = Experiment(fmu_path, interface=interface)
+        experiment = Experiment(fmu_path, fmi_type=FMI_TYPES[interface])
     except Exception as err:      # the binary does not load or instantiate
         return [Check(f"instantiate/{interface}", f"instantiate through {interface}", f"failed: {err}",
                       "instantiates", False)]

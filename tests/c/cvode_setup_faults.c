@@ -51,7 +51,7 @@ int main(int argc, char **argv)
 {
     const char *lib = argc == 3 && !strcmp(argv[1], "--lib") ? argv[2] : FMU_LIBRARY;
     char err[512];
-    if (!fmi_api_load(&api, lib, err, sizeof err)) {
+    if (!fmi2_functions_load(&api, lib, true, true, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         return 2;
     }
@@ -103,7 +103,7 @@ int main(int argc, char **argv)
         f->FreeInstance(c);
     }
     for (size_t i = 0; i < N_SETUP; ++i) CHECK(named[i], "no message named %s as the call that failed", SETUP[i]);
-    fmi_api_unload(&api);
+    fmi2_functions_unload(&api);
     printf("CVODE failing at each of its %ld SUNDIALS calls: %ld checks, %ld failed\n", made, checks, failures);
     return failures ? 1 : 0;
 }

@@ -754,7 +754,7 @@ int main(int argc, char **argv)
         }
     }
     char err[1024];
-    if (!fmi_api_load(&api, lib, err, sizeof err)) {
+    if (!fmi2_functions_load(&api, lib, true, true, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         return 2;
     }
@@ -782,7 +782,7 @@ int main(int argc, char **argv)
     CHECK(harness.bad_messages == 0, "%ld malformed log messages, the last: %s", harness.bad_messages,
           harness.last_bad);
     CHECK(harness.live == 0, "%ld blocks allocated through allocateMemory never freed", harness.live);
-    fmi_api_unload(&api);
+    fmi2_functions_unload(&api);
     printf("fmi_driver: %ld checks, %ld failed (%ld allocations, %ld log messages)\n", checks, failures,
            harness.allocations, harness.messages);
     return failures ? 1 : 0;

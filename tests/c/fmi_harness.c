@@ -1,7 +1,6 @@
 /* Shared by the driver and the fuzz target: see fmi_harness.h. */
 #include "fmi_harness.h"
 
-#include <dlfcn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,40 +9,6 @@
 #include "model_description.h"
 
 const char *const harness_guid = MODEL_GUID;
-
-bool fmi_api_load(FmiApi *f, const char *path, char *err, size_t n)
-{
-    memset(f, 0, sizeof *f);
-    f->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!f->handle) {
-        snprintf(err, n, "dlopen(%s): %s", path, dlerror());
-        return false;
-    }
-    /* POSIX's way from dlsym's void * to a function pointer. */
-#define FMI_LOOKUP(name)                                                     \
-    {                                                                        \
-        void *sym = dlsym(f->handle, "fmi2" #name);                          \
-        if (!sym) {                                                          \
-            snprintf(err, n, "%s does not export fmi2" #name, path);         \
-            fmi_api_unload(f);                                               \
-            return false;                                                    \
-        }                                                                    \
-        memcpy(&f->name, &sym, sizeof sym);                                  \
-    }
-    FMI2_FUNCTIONS(FMI_LOOKUP)
-#undef FMI_LOOKUP
-    return true;
-}
-
-void fmi_api_unload(FmiApi *f)
-{
-    /* Under AddressSanitizer the library stays loaded, so that a leak found
-     * at exit is reported with symbolized frames of the FMU. */
-#ifndef HARNESS_KEEP_LOADED
-    if (f->handle) dlclose(f->handle);
-#endif
-    memset(f, 0, sizeof *f);
-}
 
 /* ------------------------------------------------------------ callbacks */
 

@@ -1,5 +1,5 @@
-/* What the C driver and the fuzz target share: the FMU's functions looked up
- * with dlopen/dlsym as an importer does, callbacks that count allocations and
+/* What the C driver and the fuzz target share: the FMU's functions (looked up
+ * by importer/fmi2_functions.c, as the benchmark's native driver does), callbacks that count allocations and
  * check every log message, and an explicit-Euler simulation through FMI calls. */
 #ifndef FMI_HARNESS_H
 #define FMI_HARNESS_H
@@ -8,31 +8,11 @@
 #include <stddef.h>
 
 #include "fmi2FunctionTypes.h"
+#include "fmi2_functions.h"
 #include "model.h" /* the FMU's metadata: value references, ROD_NX, ROD_NZ */
 
-/* Every function of FMI 2.0 (Model Exchange, Co-Simulation and common). */
-#define FMI2_FUNCTIONS(X)                                                                                \
-    X(GetTypesPlatform) X(GetVersion) X(SetDebugLogging) X(Instantiate) X(FreeInstance)                  \
-    X(SetupExperiment) X(EnterInitializationMode) X(ExitInitializationMode) X(Terminate) X(Reset)       \
-    X(GetReal) X(GetInteger) X(GetBoolean) X(GetString) X(SetReal) X(SetInteger) X(SetBoolean)         \
-    X(SetString) X(GetFMUstate) X(SetFMUstate) X(FreeFMUstate) X(SerializedFMUstateSize)               \
-    X(SerializeFMUstate) X(DeSerializeFMUstate) X(GetDirectionalDerivative) X(EnterEventMode)          \
-    X(NewDiscreteStates) X(EnterContinuousTimeMode) X(CompletedIntegratorStep) X(SetTime)              \
-    X(SetContinuousStates) X(GetDerivatives) X(GetEventIndicators) X(GetContinuousStates)              \
-    X(GetNominalsOfContinuousStates) X(SetRealInputDerivatives) X(GetRealOutputDerivatives) X(DoStep)  \
-    X(CancelStep) X(GetStatus) X(GetRealStatus) X(GetIntegerStatus) X(GetBooleanStatus)                \
-    X(GetStringStatus)
-
-typedef struct {
-    void *handle;
-#define FMI_FIELD(name) fmi2##name##TYPE *name;
-    FMI2_FUNCTIONS(FMI_FIELD)
-#undef FMI_FIELD
-} FmiApi;
-
-/* dlopen + dlsym of every fmi2* function; false with a message in err. */
-bool fmi_api_load(FmiApi *f, const char *path, char *err, size_t n);
-void fmi_api_unload(FmiApi *f);
+/* The FMU's functions: the shared loader of importer/ (all of them required). */
+typedef Fmi2Functions FmiApi;
 
 /* ------------------------------------------------------------ callbacks */
 

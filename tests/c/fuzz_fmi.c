@@ -45,7 +45,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     const char *lib = getenv("FUZZ_FMU_LIBRARY");
     char err[1024];
-    if (!fmi_api_load(&api, lib ? lib : FMU_LIBRARY, err, sizeof err)) {
+    if (!fmi2_functions_load(&api, lib ? lib : FMU_LIBRARY, true, true, err, sizeof err)) {
         fprintf(stderr, "%s\n", err);
         exit(2);
     }
@@ -199,62 +199,75 @@ static void op_instantiate(Slot *s)
     INVARIANT(harness.bad_messages == 0, "malformed log message: %s", harness.last_bad);
 }
 
-static void op_get(Slot *s, uint8_t which)
-{
-    const long errors_before = harness.error_messages;
+/* The arguments of a fmi2Get/fmi2Set call, read from the input: a count (or NULL arrays),
+ * CAP value references and, for a Set, CAP values of each type. */
+typedef struct {
     fmi2ValueReference vr[CAP];
     double r[CAP];
     fmi2Integer iv[CAP];
     fmi2Boolean bv[CAP];
     fmi2String sv[CAP];
     bool null_arrays;
-    const size_t n = take_count(&in, &null_arrays);
-    for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(&in);
-    const fmi2ValueReference *v = null_arrays ? NULL : vr;
+    size_t n;
+} ValueArgs;
+
+static void take_value_args(ValueArgs *a, bool values)
+{
+    memset(a, 0, sizeof *a);
+    a->n = take_count(&in, &a->null_arrays);
+    for (size_t k = 0; k < CAP; ++k) {
+        a->vr[k] = take_vr(&in);
+        if (!values) continue;
+        a->r[k] = take_double(&in);
+        a->iv[k] = (int8_t)take(&in);
+        a->bv[k] = a->iv[k] & 1;
+        a->sv[k] = a->iv[k] & 2 ? "%s" : NULL;
+    }
+}
+
+static void op_get(Slot *s, uint8_t which)
+{
+    const long errors_before = harness.error_messages;
+    ValueArgs a;
+    take_value_args(&a, false);
+    const bool null_arrays = a.null_arrays;
+    const size_t n = a.n;
+    const fmi2ValueReference *v = null_arrays ? NULL : a.vr;
     fmi2Component c = s->sim.c;
     switch (which % 4) {
     case 0:
-        if (CALL(s, true, f->GetReal(c, v, n, null_arrays ? NULL : r)) == fmi2OK && !null_arrays)
-            require_finite("fmi2GetReal", r, n);
+        if (CALL(s, true, f->GetReal(c, v, n, null_arrays ? NULL : a.r)) == fmi2OK && !null_arrays)
+            require_finite("fmi2GetReal", a.r, n);
         break;
     case 1:
-        if (CALL(s, true, f->GetInteger(c, v, n, null_arrays ? NULL : iv)) == fmi2OK && !null_arrays)
+        if (CALL(s, true, f->GetInteger(c, v, n, null_arrays ? NULL : a.iv)) == fmi2OK && !null_arrays)
             for (size_t k = 0; k < n; ++k)   /* mode in {-1, 0, 1}; the counters switches, sticks >= 0 */
-                INVARIANT(vr[k] == VR_MODE ? iv[k] >= -1 && iv[k] <= 1 : iv[k] >= 0, "Integer %u = %d", vr[k], iv[k]);
+                INVARIANT(a.vr[k] == VR_MODE ? a.iv[k] >= -1 && a.iv[k] <= 1 : a.iv[k] >= 0, "Integer %u = %d",
+                          a.vr[k], a.iv[k]);
         break;
     case 2:
-        if (CALL(s, true, f->GetBoolean(c, v, n, null_arrays ? NULL : bv)) == fmi2OK && !null_arrays)
-            for (size_t k = 0; k < n; ++k) INVARIANT(bv[k] == 0 || bv[k] == 1, "contact = %d", bv[k]);
+        if (CALL(s, true, f->GetBoolean(c, v, n, null_arrays ? NULL : a.bv)) == fmi2OK && !null_arrays)
+            for (size_t k = 0; k < n; ++k) INVARIANT(a.bv[k] == 0 || a.bv[k] == 1, "contact = %d", a.bv[k]);
         break;
     default:
-        CALL(s, true, f->GetString(c, v, n, null_arrays ? NULL : sv));
+        CALL(s, true, f->GetString(c, v, n, null_arrays ? NULL : a.sv));
     }
 }
 
 static void op_set(Slot *s, uint8_t which)
 {
     const long errors_before = harness.error_messages;
-    fmi2ValueReference vr[CAP];
-    double r[CAP];
-    fmi2Integer iv[CAP];
-    fmi2Boolean bv[CAP];
-    fmi2String sv[CAP];
-    bool null_arrays;
-    const size_t n = take_count(&in, &null_arrays);
-    for (size_t k = 0; k < CAP; ++k) {
-        vr[k] = take_vr(&in);
-        r[k] = take_double(&in);
-        iv[k] = (int8_t)take(&in);
-        bv[k] = iv[k] & 1;
-        sv[k] = iv[k] & 2 ? "%s" : NULL;
-    }
-    const fmi2ValueReference *v = null_arrays ? NULL : vr;
+    ValueArgs a;
+    take_value_args(&a, true);
+    const bool null_arrays = a.null_arrays;
+    const size_t n = a.n;
+    const fmi2ValueReference *v = null_arrays ? NULL : a.vr;
     fmi2Component c = s->sim.c;
     switch (which % 4) {
-    case 0: CALL(s, false, f->SetReal(c, v, n, null_arrays ? NULL : r)); break;
-    case 1: CALL(s, false, f->SetInteger(c, v, n, null_arrays ? NULL : iv)); break;
-    case 2: CALL(s, false, f->SetBoolean(c, v, n, null_arrays ? NULL : bv)); break;
-    default: CALL(s, false, f->SetString(c, v, n, null_arrays ? NULL : sv));
+    case 0: CALL(s, false, f->SetReal(c, v, n, null_arrays ? NULL : a.r)); break;
+    case 1: CALL(s, false, f->SetInteger(c, v, n, null_arrays ? NULL : a.iv)); break;
+    case 2: CALL(s, false, f->SetBoolean(c, v, n, null_arrays ? NULL : a.bv)); break;
+    default: CALL(s, false, f->SetString(c, v, n, null_arrays ? NULL : a.sv));
     }
 }
 

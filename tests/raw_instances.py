@@ -1,26 +1,24 @@
-"""A minimal FMI 2.0 Model Exchange driver over fmpy's low-level FMU2Model,
-for tests that need each call in hand: interleaved instances, captured log
-messages, calls in the wrong state."""
+"""Raw FMI 2.0 instances for tests that need each call in hand (interleaved
+instances, captured log messages, calls in the wrong state): the instance
+comes from the harness's Experiment.instantiate, the calls are fmpy's."""
 from ctypes import POINTER, c_double
 
 import numpy as np
-from fmpy import read_model_description
-
-from painleve.instance import instantiate
 
 _P = POINTER(c_double)
 
 
 class Rod:
-    """One instance of the FMU, with its log messages collected in .messages."""
+    """One Model Exchange instance of the FMU, with its log messages collected in .messages,
+    and a forward Euler driver."""
 
-    def __init__(self, unzipdir, name="rod", guid=None, logging_on=False):
-        md = read_model_description(unzipdir)
-        self.vr = {v.name: v.valueReference for v in md.modelVariables}
+    def __init__(self, loaded, name="rod", guid=None, logging_on=False):
+        md = loaded.model_description
+        self.vr = loaded.vr
         self.nx, self.nz = len(md.derivatives), md.numberOfEventIndicators
         self.messages = []
-        self.fmu = instantiate(unzipdir, md, lambda *m: self.messages.append(m), name=name, guid=guid,
-                               logging_on=logging_on)
+        self.fmu = loaded.instantiate(instance_name=name, guid=guid, logging_on=logging_on,
+                                      on_message=lambda *m: self.messages.append(m))
 
     def set(self, **values):
         self.fmu.setReal([self.vr[k] for k in values], list(values.values()))
@@ -64,3 +62,24 @@ class Rod:
     def free(self):
         self.fmu.freeInstance()
 
+
+class Slave:
+    """One Co-Simulation instance, initialized with the start values given, with its log messages."""
+
+    def __init__(self, loaded, tolerance=None, **start):
+        from painleve.experiment import STATES
+        self.vr, self._states = loaded.vr, list(STATES)
+        self.messages = []
+        self.fmu = loaded.instantiate(fmi_type="CoSimulation", on_message=lambda *m: self.messages.append(m))
+        self.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
+        self.fmu.setReal([self.vr[k] for k in start], list(start.values()))
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+        self.t = 0.0
+
+    def step(self, h):
+        self.fmu.doStep(self.t, h)
+        self.t += h
+
+    def states(self):
+        return np.array(self.fmu.getReal([self.vr[k] for k in self._states]))

@@ -1,0 +1,37 @@
+"""An IWC experiment as an input record: the rod's parameters and its state on the
+floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
+import math
+from dataclasses import dataclass
+
+from .analytic import check_case, predict
+
+
+@dataclass(frozen=True)
+class Case:
+    """The rod (alpha = m l^2/I, friction mu, damping delta, compliance epsilon) starting on
+    the floor, y = 0, with slip velocity v0, angle theta0, angular velocity phi0 and vertical
+    velocity w = epsilon * w10 (the inner scale of Theorem 2)."""
+    theta0: float = 1.0
+    phi0: float = 0.5
+    v0: float = 1.0
+    delta: float = 1.0
+    epsilon: float = 1e-3
+    w10: float = 0.0
+    alpha: float = 3.0
+    mu: float = 3.0
+
+    def check(self):
+        """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
+        check_case(self)
+
+    def start_values(self):
+        """The FMU's start values for this case (fmpy's start_values)."""
+        return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon,
+                    x=0.0, v=self.v0, y=0.0, w=self.epsilon * self.w10, theta=self.theta0, phi=self.phi0)
+
+
+def horizon(case):
+    """Where a run of the case that has not returned to the floor is given up: in fast time
+    tau = t/eps the IWC takes ln(1/eps)/lambda_+ to compress and O(1 + delta) to stick and
+    lift off, so eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta))."""
+    return case.epsilon * (10 * math.log(1 / case.epsilon) / predict(case).lambda_plus + 50 * (1 + case.delta))
