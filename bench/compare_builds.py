@@ -15,7 +15,7 @@ QUANTITIES = ("w", "phi", "v")
 
 
 def outcomes(fmu, interface, epsilons):
-    with Experiment(fmu, interface=interface) as experiment:
+    with Experiment(fmu, fmi_type=interface) as experiment:
         return [experiment.run(case) for eps in epsilons for case in cases_at(eps)]
 
 
@@ -34,7 +34,7 @@ def main():
     print("| interface | eps | theta0 | delta | w10 | " + " | ".join(f"{q} old | {q} new | rel. diff" for q in QUANTITIES)
           + " |")
     print("|---" * (5 + 3 * len(QUANTITIES)) + "|")
-    for interface in ("ME", "CS"):
+    for interface in ("ModelExchange", "CoSimulation"):
         for old, new in zip(outcomes(args.old, interface, epsilons), outcomes(args.new, interface, epsilons)):
             c = old.case
             cells = []

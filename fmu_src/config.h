@@ -45,6 +45,8 @@
     VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, t_switch, 0, 0)                                 \
     VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, t_stick_begin, 0, 0)                  \
     VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, t_stick_end, 0, 0)                        \
+    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, t_contact_begin, 0, 0)            \
+    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, t_contact_end, 0, 0)                  \
     VARIABLE(MODE, "mode", INTEGER, DISCRETE, mode.slip, 0, 0)                                     \
     VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, switches, 0, 0)                              \
     VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, sticks, 0, 0)                                    \
@@ -69,6 +71,7 @@ typedef struct {
     double x[ROD_NX];
     RodMode mode;
     double t_switch, t_stick_begin, t_stick_end; /* times of the last switch, stick start, stick end */
+    double t_contact_begin, t_contact_end;       /* times the last contact began and ended */
     int switches, sticks;                        /* mode switches and sticks since initialization */
     double z_at_restart[ROD_NZ];                 /* indicators where integration last (re)started */
     bool initial_event;                          /* the event iteration right after initialization */

@@ -160,7 +160,7 @@ void model_decide_initial_mode(Model *m)
 void model_start(Model *m, double time)
 {
     model_decide_initial_mode(m);
-    m->t_switch = m->t_stick_begin = m->t_stick_end = time;
+    m->t_switch = m->t_stick_begin = m->t_stick_end = m->t_contact_begin = m->t_contact_end = time;
     m->switches = m->sticks = 0;
     m->initial_event = true;
     m->instant = -INFINITY;
@@ -200,6 +200,8 @@ static void record_switch(Model *m, RodMode before, double time)
         ++m->sticks;
     }
     if (sticking(before) && !sticking(m->mode)) m->t_stick_end = time;
+    if (m->mode.contact && !before.contact) m->t_contact_begin = time;
+    if (before.contact && !m->mode.contact) m->t_contact_end = time;
 }
 
 bool model_event_update(Model *m, double time, ModelEvent *e)
@@ -284,7 +286,9 @@ const char *model_implausible(const Model *m)
     }
     if (m->mode.slip < -1 || m->mode.slip > 1) return "mode";
     if (m->switches < 0 || m->sticks < 0 || m->sticks > m->switches) return "switches";
-    if (!isfinite(m->t_switch) || !isfinite(m->t_stick_begin) || !isfinite(m->t_stick_end)) return "t_switch";
+    const double times[] = { m->t_switch, m->t_stick_begin, m->t_stick_end, m->t_contact_begin, m->t_contact_end };
+    for (size_t i = 0; i < sizeof times / sizeof times[0]; ++i)
+        if (!isfinite(times[i])) return "t_switch";
     if (m->events_at_instant < 0 || m->events_at_instant >= MAX_EVENTS_AT_ONE_INSTANT) return "events_at_instant";
     return NULL;
 }
