@@ -79,7 +79,7 @@ def iwc_report(case, o):
              ("compression / stick / lift-off / flight back",
               f"{_fmt(o.compression)} / {_fmt(o.stick)} / {_fmt(o.lift_off)} / {_fmt(o.flight_back)}", "",
               "durations (see painleve.outcome)"),
-             ("events", str(o.events), "", "mode switches (-1: not seen through CS)")]
+             ("events", str(o.events), "", "mode switches")]
     return heading, rows
 
 

@@ -15,7 +15,9 @@ loop). It speaks fmpy's vocabulary: `fmi_type="ModelExchange"` or
 - `simulate_from(start_values, ...)` is a free Model Exchange run from any
   state (the figures' rods outside the theorems' hypotheses).
 - `instantiate(...)` gives a raw fmpy instance (FMU2Model / FMU2Slave) of the
-  extracted FMU, with its own logger, to code that drives each FMI call itself.
+  extracted FMU, with its own logger, to code that drives each FMI call itself;
+  for an FMI 3.0 FMU (the version is read from its model description) the
+  FMU3Model / FMU3Slave under the FMI 2.0 calls the harness makes (fmi3_adapter).
 
 What it chooses for the user: CVode's absolute tolerance is the relative one
 times each state's nominal (the FMU reports y ~ eps^2, w ~ eps: one tolerance
@@ -33,6 +35,7 @@ from fmpy import calloc, extract, free, read_model_description, simulate_fmu
 from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
+from . import fmi3_adapter
 from .case import Case, horizon
 from .cs_fast_loop import run_co_simulation
 from .me_fast_loop import run_model_exchange
@@ -89,6 +92,9 @@ class Experiment:
         kind = md.modelExchange if fmi_type == "ModelExchange" else md.coSimulation
         if kind is None:
             raise ValueError(f"this FMU does not declare {fmi_type}")
+        if md.fmiVersion.startswith("3."):
+            return fmi3_adapter.instantiate(self.unzipdir, md, fmi_type, guid=guid, instance_name=instance_name,
+                                            logging_on=logging_on, on_message=on_message)
 
         def logger(env, name, status, category, message):
             if on_message:
@@ -161,7 +167,8 @@ class Experiment:
 
     def _simulate(self, what, **kwargs):
         with self.fresh_run(what):
-            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=self.instance,
+            fmu = getattr(self.instance, "fmu", self.instance)       # fmpy takes an FMI 3.0 instance as it is
+            return simulate_fmu(self.unzipdir, model_description=self.model_description, fmu_instance=fmu,
                                 fmi_type=self.fmi_type, record_events=True, validate=False, **kwargs)
 
     def simulate(self, case):
@@ -201,10 +208,11 @@ class Experiment:
         return r
 
     def run(self, case):
-        """One IWC case, reduced to its Outcome."""
+        """One IWC case, reduced to its Outcome. (The Model Exchange fast loop drives fmpy's CVode
+        with FMI 2.0 calls; an FMI 3.0 FMU's Model Exchange runs are its simulate_fmu trajectories.)"""
         if self.fmi_type == "CoSimulation":
             return run_co_simulation(self, case)
-        if self.solver == "CVode":
+        if self.solver == "CVode" and self.model_description.fmiVersion == "2.0":
             return run_model_exchange(self, case)
         return outcome_of_trajectory(case, self.simulate(case))
 

@@ -25,12 +25,15 @@ CONTRACT = {
     "contact": ("output", "discrete", "Boolean", None),
 }
 STATES = ("x", "v", "y", "w", "theta", "phi")
+# FMI 3.0's names of the contract's types (the same variables in the FMI 3.0 FMU).
+FMI3_TYPES = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
 
 
 def contract_problems(md):
     problems = []
-    if md.fmiVersion != "2.0":
-        problems.append(f"fmiVersion is {md.fmiVersion}, not 2.0")
+    if md.fmiVersion not in ("2.0", "3.0"):
+        problems.append(f"fmiVersion is {md.fmiVersion}, not 2.0 or 3.0")
+    type_name = (lambda t: FMI3_TYPES[t]) if md.fmiVersion == "3.0" else (lambda t: t)
     if md.modelExchange is None:
         problems.append("no ModelExchange element")
     for kind in (md.modelExchange, md.coSimulation):
@@ -38,6 +41,7 @@ def contract_problems(md):
             problems.append(f"modelIdentifier is {kind.modelIdentifier}, not PainleveRod")
     variables = {v.name: v for v in md.modelVariables}
     for name, (causality, variability, typ, start) in CONTRACT.items():
+        typ = type_name(typ)
         v = variables.get(name)
         if v is None:
             problems.append(f"no variable {name}")
