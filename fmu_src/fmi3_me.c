@@ -92,7 +92,8 @@ fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuous
 
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[], size_t nContinuousStates)
 {
-    BEGIN("fmi3GetNominalsOfContinuousStates", Instantiated | READABLE);
+    /* FMI 3.0 §2.3.3-2.3.6: Initialization Mode, Initialized, Terminated; not Instantiated (FMI 2.0 allowed it). */
+    BEGIN("fmi3GetNominalsOfContinuousStates", READABLE);
     INTERFACE("fmi3GetNominalsOfContinuousStates", MODEL_EXCHANGE, "Model Exchange");
     if (check_size(in, "fmi3GetNominalsOfContinuousStates", nominals, nContinuousStates, MODEL_NX) != fmi3OK)
         return fmi3Error;
