@@ -180,7 +180,7 @@ fmi3Status fmi3Reset(fmi3Instance instance)
 
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
 {
-    BEGIN("fmi3EvaluateDiscreteStates", EventMode | ContinuousTimeMode | StepMode);
+    BEGIN("fmi3EvaluateDiscreteStates", EventMode);   /* FMI 3.0 §2.3.5: an Event Mode call */
     return fmi3OK;   /* the modes change only in fmi3UpdateDiscreteStates: nothing to evaluate before */
 }
 
