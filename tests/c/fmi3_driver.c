@@ -549,6 +549,21 @@ static void test_instantiation_and_missing_features(void)
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3DoStep", f->DoStep(c, 0, 0.01, fmi3True, &e, &t, &r, &last));
 }
 
+/* FMI 3.0's logMessage takes text ("a string that contains the message to log",
+ * §2.3.1), not a printf format as FMI 2.0's logger: a '%' reaches it as it is. */
+static void test_log_messages_are_text(void)
+{
+    Inst3 in;
+    if (!inst3_reach(&in, M3_INSTANTIATED, true)) return;
+    const fmi3String category[1] = { "50% of %s" };
+    CHECK(f->SetDebugLogging(in.c, fmi3True, 1, category) == fmi3Error, "unknown category accepted");
+    CHECK(strstr(harness.last_error, "'50% of %s'") != NULL, "the category reaches the logger changed: %s",
+          harness.last_error);
+    in.state = M3_ERROR;
+    inst3_works(&in, "a '%' in a log message");
+    inst3_free(&in);
+}
+
 int main(int argc, char **argv)
 {
     const char *lib = FMU_LIBRARY;
@@ -583,6 +598,7 @@ int main(int argc, char **argv)
         static const State3 SERIALIZED[] = { M3_INSTANTIATED, M3_CONTINUOUS, M3_ERROR, C3_STEP_EM, C3_EVENT_AGAIN };
         for (size_t k = 0; k < sizeof SERIALIZED / sizeof SERIALIZED[0]; ++k) test_serialized_state_bytes(SERIALIZED[k]);
         test_instantiation_and_missing_features();
+        test_log_messages_are_text();
     }
     CHECK(harness.bad_messages == 0, "%ld malformed log messages, the last: %s", harness.bad_messages,
           harness.last_bad);
