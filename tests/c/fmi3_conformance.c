@@ -14,7 +14,25 @@
  * afterwards (inst3_works).
  *
  * The getters and setters are checked variable by variable from the FMI 3.0
- * modelDescription.xml (test3_conformance_variables). */
+ * modelDescription.xml (test3_conformance_variables).
+ *
+ * Where the FMU is not the letter, and why (the table encodes the letter; the
+ * rows for what the FMU does not have encode its refusal):
+ *   - After an fmi3Error its messages call the state "Error"; FMI 3.0 calls it
+ *     Terminated (§2.3.1), and the FMU allows there exactly Terminated's calls.
+ *   - Clock calls (fmi3GetClock, fmi3GetIntervalDecimal, ...) are refused with
+ *     fmi3Error even with nValueReferences = 0 where the state machine lists
+ *     them: there are no clocks, nothing to answer.
+ *   - fmi3EnterConfigurationMode, fmi3GetNumberOfVariableDependencies: "must
+ *     not be called" here (no structural parameters, providesPerElement-
+ *     Dependencies = false); the FMU refuses them with a message.
+ *   - More lenient: fmi3EvaluateDiscreteStates answers fmi3OK in Event Mode
+ *     although providesEvaluateDiscreteStates is not declared (there is nothing
+ *     to evaluate), and fmi3SetDebugLogging takes categories != NULL with
+ *     nCategories = 0.
+ * Not deviations: every variable may be read in Initialization Mode in FMI 3.0
+ * (the FMI 2.0 layer's lenience is the letter here); continuous states are not
+ * settable in Event Mode in FMI 3.0 (3.0.2 allows those with reinit = false). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
