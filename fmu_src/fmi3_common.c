@@ -10,11 +10,21 @@
 #include "fmi3_instance.h"
 #include "model_description.h"
 
-/* The importer's logger, through the instance's adapter. */
+/* The importer's logger, through the instance's adapter. The instance doubles
+ * each '%' for FMI 2.0's logger, which takes a printf format; FMI 3.0's takes
+ * the text itself (§2.3.1), so each "%%" is one '%' again. */
 static void log_to_importer(const Instance *in, Status status, const char *category, const char *message)
 {
     const Fmi3Instance *self = (const Fmi3Instance *)in;
-    if (self->log_message) self->log_message(self->environment, (fmi3Status)status, category, message);
+    if (!self->log_message) return;
+    char text[2048];
+    size_t j = 0;
+    for (size_t i = 0; message[i] && j + 1 < sizeof text; ++i) {
+        text[j++] = message[i];
+        if (message[i] == '%' && message[i + 1] == '%') ++i;
+    }
+    text[j] = '\0';
+    self->log_message(self->environment, (fmi3Status)status, category, text);
 }
 
 const char *fmi3GetVersion(void) { return fmi3Version; }
@@ -180,7 +190,7 @@ fmi3Status fmi3Reset(fmi3Instance instance)
 
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
 {
-    BEGIN("fmi3EvaluateDiscreteStates", EventMode | ContinuousTimeMode | StepMode);
+    BEGIN("fmi3EvaluateDiscreteStates", EventMode);   /* FMI 3.0 §2.3.5: an Event Mode call */
     return fmi3OK;   /* the modes change only in fmi3UpdateDiscreteStates: nothing to evaluate before */
 }
 

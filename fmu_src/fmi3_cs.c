@@ -27,7 +27,8 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueRefere
                                     size_t nValues)
 {
     (void)valueReferences, (void)orders, (void)values, (void)nValues;
-    BEGIN("fmi3GetOutputDerivatives", StepMode | Terminated);
+    /* FMI 3.0 §4.2.1 and §2.3.6: Step Mode and Terminated, which an fmi3Error also leads to (§2.3.1). */
+    BEGIN("fmi3GetOutputDerivatives", StepMode | Terminated | Error);
     INTERFACE("fmi3GetOutputDerivatives", CO_SIMULATION, "Co-Simulation");
     REQUIRE("fmi3GetOutputDerivatives", nValueReferences == 0,
             "output derivatives are not provided (maxOutputDerivativeOrder = 0)");

@@ -64,13 +64,15 @@ fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuous
 
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[], size_t nContinuousStates)
 {
-    READ_ARRAY("fmi3GetNominalsOfContinuousStates", Instantiated | READABLE, ARRAY_NOMINALS, nominals,
-               nContinuousStates);
+    /* FMI 3.0 §2.3.3-2.3.6: Initialization Mode, Initialized, Terminated; not Instantiated (FMI 2.0 allowed it). */
+    READ_ARRAY("fmi3GetNominalsOfContinuousStates", READABLE, ARRAY_NOMINALS, nominals, nContinuousStates);
 }
 
+/* FMI 3.0 §2.3.2 and §2.3.5: in Instantiated and Event Mode, Model Exchange only. */
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)
 {
-    BEGIN("fmi3GetNumberOfEventIndicators", ANY_STATE);
+    BEGIN("fmi3GetNumberOfEventIndicators", Instantiated | EventMode);
+    INTERFACE("fmi3GetNumberOfEventIndicators", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi3GetNumberOfEventIndicators", nEventIndicators, "nEventIndicators is NULL");
     *nEventIndicators = MODEL_NZ;
     return fmi3OK;
@@ -78,7 +80,8 @@ fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventI
 
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates)
 {
-    BEGIN("fmi3GetNumberOfContinuousStates", ANY_STATE);
+    BEGIN("fmi3GetNumberOfContinuousStates", Instantiated | EventMode);
+    INTERFACE("fmi3GetNumberOfContinuousStates", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi3GetNumberOfContinuousStates", nContinuousStates, "nContinuousStates is NULL");
     *nContinuousStates = MODEL_NX;
     return fmi3OK;

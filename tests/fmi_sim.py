@@ -36,3 +36,28 @@ def run_fmi_sim(fmu_path, tmp_path, interface, *, start_values=None, stop_time=N
     for name in rows.dtype.names:
         result[name] = contact if name == "contact" else rows[name]
     return result
+
+
+def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path):
+    """A copy of the FMI 3.0 FMU that fmi-sim 0.7.0 (fmi-schema 0.8.0) parses.
+
+    Its Float64 variable element has no `nominal` attribute (FMI 3.0's
+    fmi3Variable.xsd has one: RealVariableAttributes), so it refuses the FMU with
+    'unknown field "nominal" in element "FmiFloat64"'. The copy is the same FMU
+    with those attributes (y's and w's) left out of modelDescription.xml: the
+    binary is untouched, and the nominals there only serve an importer's error
+    control, which fmi-sim does not have (fixed-step Euler; in Co-Simulation the
+    FMU's CVODE takes its nominals from the model, not from the XML)."""
+    import re
+    import zipfile
+
+    out = tmp_path / "PainleveRod3_for_fmi_sim.fmu"
+    with zipfile.ZipFile(fmu3_path) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
+        for item in src.infolist():
+            data = src.read(item)
+            if item.filename == "modelDescription.xml":
+                text, n = re.subn(r' nominal="[^"]*"', "", data.decode())
+                assert n == 2, f"expected the nominals of y and w, found {n}"
+                data = text.encode()
+            dst.writestr(item, data)
+    return out

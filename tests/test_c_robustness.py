@@ -6,11 +6,15 @@ cvode_setup_faults fails each SUNDIALS call of Co-Simulation's set-up in turn.
 
 The driver's conformance table (tests/c/conformance_*.c: every FMI 2.0 call in
 every state of both interfaces, to the letter of FMI 2.0.4) is its own test,
-apart from the robustness checks; valgrind runs both.
+apart from the robustness checks; valgrind runs both. The FMI 3.0 layer has its
+own driver (tests/c/fmi3_*.c: every fmi3 call in every state to the letter of
+FMI 3.0, derivatives, robustness) and fuzz target (fuzz_fmi3.c), over the same
+instrumented libraries, which export both layers; both fuzz targets replay the
+whole corpus.
 
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
 sources (to check that a planted bug is caught); FUZZ_SECONDS sets the fuzzing
-time (default 45)."""
+time (default 45), FUZZ3_SECONDS the FMI 3.0 target's (default 20)."""
 import os
 import pathlib
 import re
@@ -24,6 +28,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 C_TESTS = ROOT / "tests" / "c"
 CORPUS = C_TESTS / "corpus"
 FUZZ_SECONDS = int(os.environ.get("FUZZ_SECONDS", "45"))
+FUZZ3_SECONDS = int(os.environ.get("FUZZ3_SECONDS", "20"))
 
 SANITIZER_ENV = {
     "ASAN_OPTIONS": "detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1:"
@@ -118,35 +123,68 @@ def test_100000_instantiate_simulate_free_cycles_keep_memory_flat(build):
     assert "100000 instantiate/simulate/free cycles" in output
 
 
-def test_fuzz_seeds_and_regression_inputs_replay_clean(build):
+FUZZ_TARGETS = {"fuzz_fmi": FUZZ_SECONDS, "fuzz_fmi3": FUZZ3_SECONDS}
+
+
+@pytest.mark.parametrize("target", sorted(FUZZ_TARGETS))
+def test_fuzz_seeds_and_regression_inputs_replay_clean(build, target):
     inputs = sorted(CORPUS.iterdir())
     assert inputs, f"{CORPUS} is empty"
-    code, output = run([build / "fuzz_fmi", *inputs], timeout=300)
-    assert_clean(code, output, "fuzz_fmi on tests/c/corpus")
+    code, output = run([build / target, *inputs], timeout=300)
+    assert_clean(code, output, f"{target} on tests/c/corpus")
     assert output.count("Executed ") == len(inputs), output[-3000:]
 
 
-def test_fuzzing_finds_nothing(build, tmp_path):
+@pytest.mark.parametrize("target", sorted(FUZZ_TARGETS))
+def test_fuzzing_finds_nothing(build, tmp_path, target):
+    seconds = FUZZ_TARGETS[target]
     corpus, artifacts = tmp_path / "corpus", tmp_path / "artifacts"
     corpus.mkdir()
     artifacts.mkdir()
     # New inputs go to the temporary corpus, the first directory; tests/c/corpus is only read.
     # The value profile rewards inputs that come closer to a comparison's other side
     # (a length one past a buffer's end is found in seconds rather than minutes).
-    code, output = run([build / "fuzz_fmi", "-seed=1", "-use_value_profile=1", f"-max_total_time={FUZZ_SECONDS}",
+    code, output = run([build / target, "-seed=1", "-use_value_profile=1", f"-max_total_time={seconds}",
                         "-runs=3000000", "-timeout=10", "-rss_limit_mb=2048", "-print_final_stats=1",
-                        f"-artifact_prefix={artifacts}/", corpus, CORPUS], timeout=FUZZ_SECONDS + 120)
+                        f"-artifact_prefix={artifacts}/", corpus, CORPUS], timeout=seconds + 120)
     found = sorted(p.name for p in artifacts.iterdir())
     if found:
         keep = ROOT / "build" / "fuzz-findings"
         keep.mkdir(parents=True, exist_ok=True)
         for name in found:
             shutil.copy(artifacts / name, keep / name)
-        output += (f"\nInputs kept in {keep}: {found}. Replay one with `fuzz_fmi FILE`; once the FMU is fixed, "
+        output += (f"\nInputs kept in {keep}: {found}. Replay one with `{target} FILE`; once the FMU is fixed, "
                    "add it to tests/c/corpus as a regression case.")
-    assert_clean(code, output, "fuzz_fmi")
+    assert_clean(code, output, target)
     assert not found
     assert "Done " in output
+
+
+def test_every_fmi3_call_in_every_state_answers_as_fmi_3_0_requires(build):
+    # The "Allowed Function Calls" of FMI 3.0 sections 2.3 (common states; an fmi3Error
+    # leaves the instance in Terminated), 3.2 (Continuous-Time Mode) and 4.2 (Step Mode),
+    # each variable by its getter and setter, and the directional and adjoint derivatives
+    # of every (unknown, known) pair of the FMI 3.0 ModelStructure against central
+    # differences, under AddressSanitizer + UBSan.
+    code, output = run([build / "fmi3_driver_asan", "--conformance-only"], timeout=300)
+    assert_clean(code, output, "fmi3_driver_asan --conformance-only")
+    assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
+
+
+def test_fmi3_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build):
+    # NULLs, nValues != nValueReferences, every type by every value reference, ranges named
+    # in messages, early return and Event Mode (a step with an event pending is refused),
+    # serialized states cut short or changed, what the FMU does not have.
+    code, output = run([build / "fmi3_driver_asan", "--no-conformance"], timeout=300)
+    assert_clean(code, output, "fmi3_driver_asan --no-conformance")
+    assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
+
+
+def test_fmi3_driver_finds_nothing_under_valgrind_memcheck(build):
+    code, output = run([*VALGRIND, build / "fmi3_driver"], timeout=300)
+    assert_clean(code, output, "valgrind fmi3_driver")
+    assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
+    assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
 
 
 def test_a_state_on_a_stick_fold_leaves_it_by_a_state_the_fold_depends_on(build):

@@ -1,6 +1,7 @@
 /* The variables and <ModelStructure> of modelDescription.xml, as C tables
  * generated at configure time by model_structure.py (model_structure_data.c),
- * and the questions FMI 2.0.4 asks of them: which variables may be read or
+ * (either FMI version), and the questions FMI 2.0.4 asks of them (FMI 3.0
+ * asks the same, §2.2.11 of 3.0 "Getting Partial Derivatives"): which variables may be read or
  * set in which state, which (unknown, known) pairs a directional derivative
  * is defined for. The conformance tests take their expectations from here. */
 #ifndef MODEL_STRUCTURE_H
@@ -37,6 +38,9 @@ extern const MdVariable MD_VARIABLES[]; /* MD_VARIABLES[index - 1] */
 extern const int MD_N_VARIABLES;
 extern const MdUnknown MD_OUTPUTS[], MD_DERIVATIVES[], MD_INITIALUNKNOWNS[];
 extern const int MD_N_OUTPUTS, MD_N_DERIVATIVES, MD_N_INITIALUNKNOWNS;
+/* FMI 3.0's <EventIndicator> elements (none in an FMI 2.0 description). */
+extern const MdUnknown MD_EVENTINDICATORS[];
+extern const int MD_N_EVENTINDICATORS;
 
 const MdVariable *md_var(int index);
 
