@@ -14,7 +14,8 @@
 #define MODEL_NZ ROD_NZ
 
 /* Parameter ranges keep every derived quantity finite in double precision:
- * F_N ~ y/eps^2 and phi^2 must not overflow. */
+ * F_N ~ y/eps^2 (kappa y^2/eps^3) and phi^2 must not overflow. kappa, beta >= 0
+ * keep the compliance law h decreasing in y and w where the contact acts (rod.h). */
 #define STATE_BOUND 1e6
 
 /* VARIABLE(ID, name, type, kind, field, min, max): field is the member of Model that
@@ -47,6 +48,8 @@
     VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, t_stick_end, 0, 0)                        \
     VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, t_contact_begin, 0, 0)            \
     VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, t_contact_end, 0, 0)                  \
+    VARIABLE(KAPPA, "kappa", REAL, PARAMETER, params.kappa, 0, 1e6)                                \
+    VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
     VARIABLE(MODE, "mode", INTEGER, DISCRETE, mode.slip, 0, 0)                                     \
     VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, switches, 0, 0)                              \
     VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, sticks, 0, 0)                                    \

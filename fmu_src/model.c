@@ -29,8 +29,9 @@ bool model_settable(const VariableInfo *info)
 
 void model_reset(Model *m)
 {
-    /* A Theorem 1 case (inconsistent quadrant): the defaults show an IWC. */
-    *m = (Model){ .params = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3 },
+    /* A Theorem 1 case (inconsistent quadrant): the defaults show an IWC, with the
+     * paper's linear compliance law (kappa = beta = 0). */
+    *m = (Model){ .params = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3, .kappa = 0, .beta = 0 },
                   .x = { [ROD_X] = 0, [ROD_V] = 1, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 0.5 },
                   .mode = { false, +1 },
                   .instant = -INFINITY,
@@ -42,6 +43,12 @@ const char *model_check(unsigned int vr, double value)
 {
     const VariableInfo *info = model_variable(vr);
     if (!isfinite(value)) return "must be finite";
+    /* kappa < 0 softens the spring until h grows with y at depth d > 1/(2|kappa|);
+     * beta < 0 reverses the damper beyond d = 1/|beta|: both inside the contact. */
+    if (vr == VR_KAPPA && value < 0)
+        return "is out of range (a softening spring: the compliance law h would increase with y, d_y h > 0)";
+    if (vr == VR_BETA && value < 0)
+        return "is out of range (a damper that reverses: the compliance law h would increase with w, d_w h > 0)";
     if (value < info->min || value > info->max) return "is out of range";
     return NULL;
 }
@@ -241,6 +248,19 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 
 /* ------------------------------------------------ partial derivatives */
 
+/* The column of parameter vr in RodPartials (ROD_P_*). */
+static int parameter_column(unsigned int vr)
+{
+    switch (vr) {
+    case VR_ALPHA: return ROD_P_ALPHA;
+    case VR_MU: return ROD_P_MU;
+    case VR_DELTA: return ROD_P_DELTA;
+    case VR_EPSILON: return ROD_P_EPSILON;
+    case VR_KAPPA: return ROD_P_KAPPA;
+    default: return ROD_P_BETA;
+    }
+}
+
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
     const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
@@ -256,7 +276,7 @@ const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned in
     }
     const RodPartials *d = &m->partials;
     const bool by_state = k->kind == KIND_STATE;
-    const int col = by_state ? (int)(known - VR_X) : (int)(known - VR_ALPHA);
+    const int col = by_state ? (int)(known - VR_X) : parameter_column(known);
     if (unknown >= VR_DER_X && unknown <= VR_DER_PHI) {
         const int row = (int)(unknown - VR_DER_X);
         *value = by_state ? d->dx_x[row][col] : d->dx_p[row][col];

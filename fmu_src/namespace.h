@@ -27,6 +27,8 @@
 #define rod_event_indicators NAMESPACED(rod_event_indicators)
 #define rod_event_update NAMESPACED(rod_event_update)
 #define rod_force_bracket NAMESPACED(rod_force_bracket)
+#define rod_compliance NAMESPACED(rod_compliance)
+#define rod_spring_energy NAMESPACED(rod_spring_energy)
 #define rod_friction_force NAMESPACED(rod_friction_force)
 #define rod_indicator_name NAMESPACED(rod_indicator_name)
 #define rod_jacobian NAMESPACED(rod_jacobian)

@@ -2,12 +2,13 @@
  *
  * Modes are discrete states that change only at events, so the right-hand
  * side is smooth between events (MODEL.md §2):
- *   contact  F_N = g/eps with g = -y/eps - delta w (the linear branch of eq FN)
+ *   contact  F_N = h/eps with h = h(y/eps, w) the compliance law (rod.h; the
+ *            paper's linear g = -y/eps - delta w by default, eq FN)
  *   slip     s = +1 / -1: eq Painleve with q_s, p_s, c_s
  *   stick    s = 0: the exact Filippov field, v' = 0 (see mode_gains)
  * Event indicators (slot: meaning per mode):
  *   0  y                       contact surface
- *   1  g                       F_N = 0 while in contact, F_N > 0 ahead in flight
+ *   1  h                       F_N = 0 while in contact, F_N > 0 ahead in flight
  *   2  v            (slipping) reversal or stick
  *      a + q_+ F_N  (sticking) forward fold of Lemma lemma:nonStick, < 0 inside
  *   3  a + q_- F_N  (sticking) backward fold, > 0 inside
@@ -49,9 +50,28 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
     return r;
 }
 
+RodCompliance rod_compliance(const RodParams *p, double y, double w)
+{
+    /* Written so that kappa = beta = 0 evaluates -y/eps - delta w in the same
+     * operations as the linear law (results bit for bit unchanged). */
+    const double yh = y / p->epsilon, d = yh < 0 ? -yh : 0.0;
+    const double damping = p->delta * (1 + p->beta * d);
+    RodCompliance c;
+    c.h = (-yh + p->kappa * d * d) - damping * w;
+    c.h_yh = d > 0 ? -(1 + 2 * p->kappa * d - p->delta * p->beta * w) : -1.0;
+    c.h_w = -damping;
+    return c;
+}
+
 double rod_force_bracket(const RodParams *p, const double x[ROD_NX])
 {
-    return -x[ROD_Y] / p->epsilon - p->delta * x[ROD_W];
+    return rod_compliance(p, x[ROD_Y], x[ROD_W]).h;
+}
+
+double rod_spring_energy(const RodParams *p, double y)
+{
+    const double d = -(y / p->epsilon), dp = d > 0 ? d : 0.0;
+    return 0.5 * d * d + p->kappa * dp * dp * dp / 3;
 }
 
 double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
@@ -74,11 +94,11 @@ double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX])
 {
     /* Centre of mass (X, Y) = (x - cos theta, y + sin theta), eq coord. The
      * spring holds energy only while it pushes: after a damped lift-off below
-     * the floor (y < 0, F_N = 0) its 0.5 (y/eps)^2 has gone to the damper. */
+     * the floor (y < 0, F_N = 0) its d^2/2 + kappa d^3/3 has gone to the damper. */
     const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
     const double Xd = x[ROD_V] + phi * s, Yd = x[ROD_W] + phi * c;
     const double y = x[ROD_Y];
-    const double spring = m.contact ? 0.5 * (y / p->epsilon) * (y / p->epsilon) : 0.0;
+    const double spring = m.contact ? rod_spring_energy(p, y) : 0.0;
     return 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / p->alpha + (y + s) + spring;
 }
 
@@ -148,8 +168,10 @@ void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double 
     const RodCoeffs k = rod_coeffs(p, th, phi), dk = coeffs_dtheta(p, th, phi);
     const double F = rod_normal_force(p, m, x);
     const double a_phi = -2 * phi * cos(th);     /* da/dphi; db/dphi = 2 phi sin */
-    /* F = g/eps in contact: dF/dy = -1/eps^2, dF/dw = -delta/eps */
-    const double F_y = m.contact ? -1 / (eps * eps) : 0, F_w = m.contact ? -p->delta / eps : 0;
+    /* F = h(y/eps, w)/eps in contact: dF/dy = h_yh/eps^2, dF/dw = h_w/eps
+     * (-1/eps^2 and -delta/eps for the linear law) */
+    const RodCompliance h = rod_compliance(p, x[ROD_Y], x[ROD_W]);
+    const double F_y = m.contact ? h.h_yh / (eps * eps) : 0, F_w = m.contact ? h.h_w / eps : 0;
     for (int i = 0; i < ROD_NX; ++i)
         for (int j = 0; j < ROD_NX; ++j) J[i][j] = 0;
     J[ROD_X][ROD_V] = 1;
@@ -203,20 +225,21 @@ const char *rod_indicator_name(const RodMode m, int i)
     const bool stick = sticking(m);
     switch (i) {
     case ROD_Z_Y: return "y";
-    case ROD_Z_FORCE: return "g = -y/eps - delta w (F_N = 0)";
+    case ROD_Z_FORCE: return "h(y/eps, w) (F_N = 0)";
     case ROD_Z_SLIP: return stick ? "a + q_+ F_N (forward fold)" : "v";
     case ROD_Z_AUX: return stick ? "a + q_- F_N (backward fold)" : m.contact ? "none" : "w (dip bottom)";
     default: return "?";
     }
 }
 
-/* Contact iff y <= 0 and g > 0 (eq FN), ties broken by the free motion
- * y'' = b, so a rod at rest on y = 0 and pushed down by b < 0 is in contact. */
+/* Contact iff y <= 0 and h > 0 (eq FN), ties broken by the free motion
+ * y'' = b, so a rod at rest on y = 0 and pushed down by b < 0 is in contact:
+ * h' = h_yh w/eps + h_w b, h'' = h_yh b/eps to leading order. */
 static bool in_contact(const RodParams *p, const double x[ROD_NX], double b)
 {
     const double eps = p->epsilon, w = x[ROD_W];
-    const double g = rod_force_bracket(p, x);
-    return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(g, -w / eps - p->delta * b, -b / eps) > 0;
+    const RodCompliance h = rod_compliance(p, x[ROD_Y], w);
+    return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(h.h, h.h_yh * (w / eps) + h.h_w * b, h.h_yh * (b / eps)) > 0;
 }
 
 /* Slip direction at v = 0 in contact: stick inside the Filippov cone

@@ -24,6 +24,8 @@ typedef struct {
     double mu;      /* friction coefficient, >= 0 */
     double delta;   /* contact damping, >= 0 */
     double epsilon; /* compliance, > 0: stiffness epsilon^-2 */
+    double kappa;   /* spring stiffening, >= 0: stiffness 1 + 2 kappa d at scaled penetration d */
+    double beta;    /* damping growth, >= 0: damping delta (1 + beta d) (Hunt-Crossley-like) */
 } RodParams;
 
 typedef struct {
@@ -43,8 +45,26 @@ typedef struct {
 
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
 
-/* g = -y/eps - delta w: the bracket of eq FN. */
+/* The compliance law h(yh, w) of eq hNon in the scaled variables yh = y/eps and w,
+ * with the scaled penetration d = max(-yh, 0):
+ *   h = -yh + kappa d^2 - delta w (1 + beta d),   F_N = h/eps in contact.
+ * Its linearization at the origin is exactly -yh - delta w (eq hLin): kappa = beta = 0
+ * is the paper's linear law. With kappa, beta >= 0, h decreases in yh and (delta > 0)
+ * in w wherever h > 0 and y <= 0 (the paper's d_y f < 0, d_w f < 0). */
+typedef struct {
+    double h;    /* h(yh, w) */
+    double h_yh; /* dh/dyh (the contact side at d = 0) */
+    double h_w;  /* dh/dw */
+} RodCompliance;
+
+RodCompliance rod_compliance(const RodParams *p, double y, double w);
+
+/* h(y/eps, w): the bracket of eq FN (g = -y/eps - delta w for the linear law). */
 double rod_force_bracket(const RodParams *p, const double x[ROD_NX]);
+
+/* Energy held by the contact spring at height y: the integral of its force
+ * -yh + kappa d^2 over the penetration, d^2/2 + kappa d^3/3 with d = -y/eps. */
+double rod_spring_energy(const RodParams *p, double y);
 
 /* F_N of the current mode: smooth (linear) while in contact, 0 otherwise. */
 double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);

@@ -13,24 +13,35 @@
  *   a = -phi^2 cs,  b = -1 + phi^2 sn,
  *   q_sg = al sn cs - sg mu k,  p_sg = 1 + al cs^2 - sg mu al sn cs,  c_sg = -al (cs - sg mu sn),
  *   S_w = (1 + al)/k,  S_phi = -al cs/k,  A_w = -al sn cs/k,  A_phi = al sn/k,
- * and, in contact, F = g/eps = -y/eps^2 - delta w/eps (0 in flight).
- * Parameters enter only through the gains (alpha, mu) and through F (delta, eps);
+ * and, in contact, F = h(y/eps, w)/eps with the compliance law h of rod.h (the
+ * linear law: -y/eps^2 - delta w/eps; 0 in flight).
+ * Parameters enter only through the gains (alpha, mu) and through F (delta, eps, kappa, beta);
  * a and b depend on the states alone. */
 #include "rod_partials.h"
 
 #include <math.h>
 #include <string.h>
 
-/* F and its partials: F_y = -1/eps^2, F_w = -delta/eps, F_delta = -w/eps,
- * F_eps = 2 y/eps^3 + delta w/eps^2; all 0 in flight. */
-typedef struct { double F, y, w, delta, eps; } NormalForce;
+/* F and its partials, F = h(yh, w)/eps with yh = y/eps, d = max(-yh, 0) (rod.h):
+ *   F_y = h_yh/eps^2,  F_w = h_w/eps,  F_delta = -w (1 + beta d)/eps,
+ *   F_eps = -h/eps^2 - h_yh y/eps^3,  F_kappa = d^2/eps,  F_beta = -delta w d/eps;
+ * all 0 in flight. (Linear law: F_y = -1/eps^2, F_w = -delta/eps, F_delta = -w/eps,
+ * F_eps = 2 y/eps^3 + delta w/eps^2.) */
+typedef struct { double F, y, w, delta, eps, kappa, beta; } NormalForce;
 
 static NormalForce normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
 {
-    if (!m.contact) return (NormalForce){ 0, 0, 0, 0, 0 };
+    if (!m.contact) return (NormalForce){ 0, 0, 0, 0, 0, 0, 0 };
     const double eps = p->epsilon, y = x[ROD_Y], w = x[ROD_W];
-    return (NormalForce){ rod_normal_force(p, m, x), -1 / (eps * eps), -p->delta / eps, -w / eps,
-                          2 * y / (eps * eps * eps) + p->delta * w / (eps * eps) };
+    const RodCompliance h = rod_compliance(p, y, w);
+    const double d = y < 0 ? -y / eps : 0.0;
+    return (NormalForce){ rod_normal_force(p, m, x),
+                          h.h_yh / (eps * eps),
+                          h.h_w / eps,
+                          -w * (1 + p->beta * d) / eps,
+                          -h.h / (eps * eps) - h.h_yh * y / (eps * eps * eps),
+                          d * d / eps,
+                          -p->delta * w * d / eps };
 }
 
 /* How the mode's gains (rod.c's mode_gains: v' = a + v F, w' = b + w_a a + w F,
@@ -79,7 +90,13 @@ static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX]
         dx_p[ROD_V][ROD_P_MU] = gm.v * F.F;
         dx_p[ROD_V][ROD_P_DELTA] = g.v * F.delta;
         dx_p[ROD_V][ROD_P_EPSILON] = g.v * F.eps;
+        dx_p[ROD_V][ROD_P_KAPPA] = g.v * F.kappa;
+        dx_p[ROD_V][ROD_P_BETA] = g.v * F.beta;
     }
+    dx_p[ROD_W][ROD_P_KAPPA] = g.w * F.kappa;
+    dx_p[ROD_W][ROD_P_BETA] = g.w * F.beta;
+    dx_p[ROD_PHI][ROD_P_KAPPA] = g.phi * F.kappa;
+    dx_p[ROD_PHI][ROD_P_BETA] = g.phi * F.beta;
     dx_p[ROD_W][ROD_P_ALPHA] = ga.w_a * c.a + ga.w * F.F;
     dx_p[ROD_W][ROD_P_MU] = gm.w_a * c.a + gm.w * F.F;
     dx_p[ROD_W][ROD_P_DELTA] = g.w * F.delta;
@@ -99,6 +116,8 @@ static void normal_force_partials(const RodParams *p, RodMode m, const double x[
     d_x[ROD_W] = F.w;
     d_p[ROD_P_DELTA] = F.delta;
     d_p[ROD_P_EPSILON] = F.eps;
+    d_p[ROD_P_KAPPA] = F.kappa;
+    d_p[ROD_P_BETA] = F.beta;
 }
 
 /* F_T (rod_friction_force): 0 in flight; sg mu F while slipping; while
@@ -118,6 +137,8 @@ static void friction_force_partials(const RodParams *p, RodMode m, const double 
         d_p[ROD_P_MU] = m.slip * F.F;
         d_p[ROD_P_DELTA] = smu * F.delta;
         d_p[ROD_P_EPSILON] = smu * F.eps;
+        d_p[ROD_P_KAPPA] = smu * F.kappa;
+        d_p[ROD_P_BETA] = smu * F.beta;
         return;
     }
     const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha;
@@ -130,26 +151,31 @@ static void friction_force_partials(const RodParams *p, RodMode m, const double 
     d_p[ROD_P_ALPHA] = (sn * cs * F.F - FT * sn * sn) / k;
     d_p[ROD_P_DELTA] = ssc * F.delta;
     d_p[ROD_P_EPSILON] = ssc * F.eps;
+    d_p[ROD_P_KAPPA] = ssc * F.kappa;
+    d_p[ROD_P_BETA] = ssc * F.beta;
 }
 
-/* energy (rod_energy) = (Xd^2 + Yd^2)/2 + phi^2/(2 al) + y + sn [+ (y/eps)^2/2 in contact],
- * Xd = v + phi sn, Yd = w + phi cs (the centre of mass's velocity, eq coord):
- *   dE/dv = Xd, dE/dw = Yd, dE/dy = 1 [+ y/eps^2],
+/* energy (rod_energy) = (Xd^2 + Yd^2)/2 + phi^2/(2 al) + y + sn [+ S(d) in contact],
+ * Xd = v + phi sn, Yd = w + phi cs (the centre of mass's velocity, eq coord), and the
+ * spring's S(d) = d^2/2 + kappa dp^3/3, d = -y/eps, dp = max(d, 0), S'(d) = d + kappa dp^2:
+ *   dE/dv = Xd, dE/dw = Yd, dE/dy = 1 [- S'(d)/eps],
  *   dE/dtheta = phi (Xd cs - Yd sn) + cs, dE/dphi = Xd sn + Yd cs + phi/al,
- *   dE/dalpha = -phi^2/(2 al^2), dE/deps = [-y^2/eps^3]. */
+ *   dE/dalpha = -phi^2/(2 al^2), dE/deps = [S'(d) y/eps^2], dE/dkappa = [dp^3/3]. */
 static void energy_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
                             double d_p[ROD_NP])
 {
     const double th = x[ROD_THETA], phi = x[ROD_PHI], y = x[ROD_Y], eps = p->epsilon, al = p->alpha;
     const double sn = sin(th), cs = cos(th);
     const double Xd = x[ROD_V] + phi * sn, Yd = x[ROD_W] + phi * cs;
+    const double d = -y / eps, dp = d > 0 ? d : 0.0, S_d = d + p->kappa * dp * dp;
     d_x[ROD_V] = Xd;
     d_x[ROD_W] = Yd;
-    d_x[ROD_Y] = 1 + (m.contact ? y / (eps * eps) : 0);
+    d_x[ROD_Y] = 1 - (m.contact ? S_d / eps : 0);
     d_x[ROD_THETA] = phi * (Xd * cs - Yd * sn) + cs;
     d_x[ROD_PHI] = Xd * sn + Yd * cs + phi / al;
     d_p[ROD_P_ALPHA] = -0.5 * phi * phi / (al * al);
-    d_p[ROD_P_EPSILON] = m.contact ? -y * y / (eps * eps * eps) : 0;
+    d_p[ROD_P_EPSILON] = m.contact ? S_d * y / (eps * eps) : 0;
+    d_p[ROD_P_KAPPA] = m.contact ? dp * dp * dp / 3 : 0;
 }
 
 void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d)

@@ -6,7 +6,7 @@
 
 #include "rod.h"
 
-enum { ROD_P_ALPHA, ROD_P_MU, ROD_P_DELTA, ROD_P_EPSILON, ROD_NP };      /* parameters */
+enum { ROD_P_ALPHA, ROD_P_MU, ROD_P_DELTA, ROD_P_EPSILON, ROD_P_KAPPA, ROD_P_BETA, ROD_NP };  /* parameters */
 
 /* Partial derivatives of mode m's smooth branch at x: of the state derivatives and of the
  * outputs, with respect to the states and to the parameters. */

@@ -26,8 +26,11 @@ from fmpy.fmi1 import FMICallException
 from raw_instances import Rod, _P
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
-PARAMETERS = ["alpha", "mu", "delta", "epsilon"]
-DEFAULTS = dict(alpha=3.0, mu=3.0, delta=1.0, epsilon=1e-3)
+PARAMETERS = ["alpha", "mu", "delta", "epsilon", "kappa", "beta"]
+# A nonlinear compliance law (issue #16), so that the partials by kappa and beta are measured
+# (their central differences need kappa, beta > 0: both are refused below 0); the linear law
+# kappa = beta = 0 is one point of it, covered by tests/c/rod_partials_check.c.
+DEFAULTS = dict(alpha=3.0, mu=3.0, delta=1.0, epsilon=1e-3, kappa=0.5, beta=0.5)
 FMI2_ERROR = 3
 REL_TOL = 1e-6
 
@@ -49,6 +52,9 @@ NEAR_SURFACES = {
     "compressed and rising": dict(y=-2e-7, w=1e-4, theta=0.3, phi=0.4, v=0.2, mu=1.0),
     # The same at rest: sticks (F_N = 0.1 inside the cone); delta 10 lifts it off, flying with s = sign(a) = -1.
     "compressed and rising, at rest": dict(y=-2e-7, w=1e-4, theta=0.3, phi=0.4, v=0.0, mu=1.0),
+    # h = d + kappa d^2 - delta w (1 + beta d) = 1e-8 at d = -y/eps = 2e-4: kappa 0 or beta 1 lift the
+    # rod off; at rest with a = 0 (phi = 0) it sticks in contact (q_+ F < 0 < q_- F), flies with s = +1.
+    "at rest at the lift-off edge": dict(y=-2e-7, w=1.9999e-4, theta=0.3, phi=0.0, v=0.0, mu=1.0),
     # a = 0: stick while alpha (sin cos - mu sin^2) < mu, i.e. alpha < 4.97; alpha 6 or 9 slips.
     "at rest, alpha at the stick cone's edge": dict(y=-1e-6, w=0.0, theta=1.0, phi=0.0, v=0.0, mu=0.5),
 }

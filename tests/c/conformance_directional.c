@@ -25,11 +25,14 @@ static const FmiApi *const f = &api;
 enum { MAX_VARS = 64 };
 
 /* A state inside one mode of the model, away from its switching surfaces
- * (in contact, slipping forward), so that central differences stay in it. */
+ * (in contact, slipping forward), so that central differences stay in it;
+ * with a nonlinear compliance law (kappa, beta > 0: differences in them may
+ * step both ways, below 0 they are refused). */
 static const struct {
     fmi2ValueReference vr;
     double value;
-} START[] = { { VR_MU, 1.0 }, { VR_V, 0.2 }, { VR_Y, -2e-7 }, { VR_W, -1e-4 }, { VR_THETA, 0.3 }, { VR_PHI, 0.4 } };
+} START[] = { { VR_MU, 1.0 },     { VR_V, 0.2 },     { VR_Y, -2e-7 },   { VR_W, -1e-4 },
+              { VR_THETA, 0.3 },  { VR_PHI, 0.4 },   { VR_KAPPA, 0.5 }, { VR_BETA, 0.5 } };
 
 /* A new instance in `state`, started from START. */
 static bool reach(Inst *in, State state)

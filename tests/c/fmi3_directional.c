@@ -25,11 +25,13 @@ static const Fmi3Api *const f = &api3;
 enum { MAX_VARS = 64 };
 
 /* In contact, slipping forward, away from the switching surfaces, so that
- * central differences stay in one mode. */
+ * central differences stay in one mode; with a nonlinear compliance law
+ * (kappa, beta > 0: differences in them may step both ways). */
 static const struct {
     fmi3ValueReference vr;
     double value;
-} START[] = { { VR_MU, 1.0 }, { VR_V, 0.2 }, { VR_Y, -2e-7 }, { VR_W, -1e-4 }, { VR_THETA, 0.3 }, { VR_PHI, 0.4 } };
+} START[] = { { VR_MU, 1.0 },     { VR_V, 0.2 },     { VR_Y, -2e-7 },   { VR_W, -1e-4 },
+              { VR_THETA, 0.3 },  { VR_PHI, 0.4 },   { VR_KAPPA, 0.5 }, { VR_BETA, 0.5 } };
 
 static bool reach(Inst3 *in, State3 state)
 {

@@ -14,7 +14,7 @@
 #include "rod_partials.h"
 
 #define NF (ROD_NX + ROD_NOUT) /* state derivatives, then F_N, F_T, energy */
-#define NK (ROD_NX + ROD_NP)   /* states, then alpha, mu, delta, epsilon */
+#define NK (ROD_NX + ROD_NP)   /* states, then alpha, mu, delta, epsilon, kappa, beta */
 #define POINTS_PER_MODE 400
 #define REL_TOL 1e-6
 
@@ -34,7 +34,9 @@ static double *param(RodParams *p, int j)
     case ROD_P_ALPHA: return &p->alpha;
     case ROD_P_MU: return &p->mu;
     case ROD_P_DELTA: return &p->delta;
-    default: return &p->epsilon;
+    case ROD_P_EPSILON: return &p->epsilon;
+    case ROD_P_KAPPA: return &p->kappa;
+    default: return &p->beta;
     }
 }
 
@@ -71,14 +73,17 @@ static void central_difference(RodParams p, RodMode m, const double x0[ROD_NX], 
 
 static const char *const ROW[NF] = { "der(x)", "der(v)", "der(y)", "der(w)", "der(theta)", "der(phi)",
                                      "F_N", "F_T", "energy" };
-static const char *const COL[NK] = { "x", "v", "y", "w", "theta", "phi", "alpha", "mu", "delta", "epsilon" };
+static const char *const COL[NK] = { "x", "v", "y", "w", "theta", "phi", "alpha", "mu", "delta", "epsilon",
+                                     "kappa", "beta" };
 
 /* One random point: every entry, scaled by its known's scale n_j, within REL_TOL of the
  * difference, plus a floor far above the differences' round-off (~1e-11 |f|). */
 static int check_point(RodMode m, const char *mode_name, long *entries)
 {
-    RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3) };
+    /* kappa, beta up to 30: at penetrations d = -y/eps ~ 3 eps their terms are O(1) parts of h */
+    RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3), uniform(0, 30), uniform(0, 30) };
     if (uniform(0, 1) < 0.1) p.delta = 0; /* undamped contacts too */
+    if (uniform(0, 1) < 0.2) p.kappa = p.beta = 0; /* the paper's linear law too */
     const double eps = p.epsilon;
     double x[ROD_NX] = { uniform(-5, 5), uniform(-2, 2), eps * eps * uniform(-3, 3), eps * uniform(-3, 3),
                          uniform(-3.2, 3.2), uniform(-2.5, 2.5) };
@@ -112,8 +117,8 @@ static int check_point(RodMode m, const char *mode_name, long *entries)
             ++*entries;
             if (!(fabs(a - fd) <= REL_TOL * fabs(fd) + 1e-8 * scale[i])) {
                 printf("FAIL %s: d %s / d %s = %.12g, central difference %.12g (x = %g %g %g %g %g %g; alpha %g mu %g "
-                       "delta %g eps %g)\n", mode_name, ROW[i], COL[j], a / n[j], fd / n[j], x[0], x[1], x[2], x[3],
-                       x[4], x[5], p.alpha, p.mu, p.delta, p.epsilon);
+                       "delta %g eps %g kappa %g beta %g)\n", mode_name, ROW[i], COL[j], a / n[j], fd / n[j], x[0], x[1],
+                       x[2], x[3], x[4], x[5], p.alpha, p.mu, p.delta, p.epsilon, p.kappa, p.beta);
                 ++failed;
             }
         }
