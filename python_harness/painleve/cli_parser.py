@@ -294,7 +294,7 @@ def _add_validate(sub):
 
 def _add_figures(sub):
     fig = sub.add_parser("figures", allow_abbrev=False, help="the paper's figures from simulations of the FMU",
-                         description="Regenerates the paper's figures fig:GB, fig:eDelta0 (a, b) and video from "
+                         description="Regenerates the paper's figures (GB: the quadrants of the (theta, phi) plane; eDelta0: the coefficient e(0, theta0) and e(delta, theta0); video: two rods, one IWC, one lift-off) from "
                                      "simulations of the FMU, with the analytic curves beside the simulated "
                                      "points. Writes PNG files, figures.json (the numbers behind each plot) "
                                      "and figures.md (how far the points lie from the curves).")

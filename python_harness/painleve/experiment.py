@@ -6,7 +6,7 @@ loop). It speaks fmpy's vocabulary: `fmi_type="ModelExchange"` or
 `"CoSimulation"`, `solver`, `relative_tolerance`, structured arrays.
 
 - `run(case)` reduces an IWC case (experiment `Case`: it starts on the floor,
-  y = 0, w = eps * w10, MODEL.md §3, and ends when the rod, having touched
+  y = 0, w = eps * w10, docs/model.md §3, and ends when the rod, having touched
   the floor, is back at y = 0 moving up) to its `Outcome`, through the fast
   loop of its interface: me_fast_loop (fmpy's CVode from event to event, the
   return exact) or cs_fast_loop (fmi2DoStep, the phases from the FMU's log).

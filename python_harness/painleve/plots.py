@@ -52,7 +52,7 @@ def plot_gb(d, path, *, dpi=150):
                 bbox=dict(boxstyle="round", fc="white", ec="0.6", alpha=0.85))
     ax.set_xlabel(r"$\theta$")
     ax.set_ylabel(r"$\phi$")
-    ax.set_title(rf"fig:GB — $(\theta,\phi)$-plane, $\alpha={p['alpha']:g}$, $\mu={p['mu']:g}$; points: what the "
+    ax.set_title(rf"Quadrants of the $(\theta,\phi)$-plane, $\alpha={p['alpha']:g}$, $\mu={p['mu']:g}$; points: what the "
                  rf"FMU's rod does ($\epsilon={p['epsilon']:g}$)", fontsize=10)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, framealpha=0.9)
     return _save(fig, path, dpi)
@@ -91,14 +91,14 @@ def plot_edelta0(d, path, *, dpi=150):
         ax_b.plot(large, an.e_large_delta(large, theta0, alpha=al, mu=mu), "--", color=colour, lw=1)
         pts = [q for q in d["b"] if q["theta0"] == theta0]
         ax_b.plot([q["delta"] for q in pts], [q["e_simulated"] for q in pts], "x", color="tab:red", ms=7)
-    ax_b.plot([], [], "k--", lw=1, label="asymptotes: eqs eDeltaSmall, eDeltaLarge")
+    ax_b.plot([], [], "k--", lw=1, label="asymptotes for small and large delta")
     ax_b.plot([], [], "x", color="tab:red", label=rf"FMU $w/v_0$, $\epsilon={d['b'][0]['epsilon']:g}$")
     ax_b.set_ylim(0, 1.15 * top)
     ax_b.set_xlabel(r"$\delta$")
     ax_b.set_ylabel(r"$e(\delta,\theta_0)$")
     ax_b.set_title(f"(b) $\\alpha={al:g}$, $\\mu={mu:g}$", fontsize=10)
     ax_b.legend(fontsize=8)
-    fig.suptitle("fig:eDelta0 — the horizontal coefficient of restitution: analytic curves, FMU points", fontsize=11)
+    fig.suptitle("The horizontal coefficient of restitution: analytic curves, FMU points", fontsize=11)
     return _save(fig, path, dpi)
 
 

@@ -1,5 +1,5 @@
 """The checks of `validate` that need no theorem: fmpy's static validation,
-the interface contract of MODEL.md §4, and the default experiment as any FMI
+the interface contract of docs/model.md §4, and the default experiment as any FMI
 tool would run it."""
 import math
 
@@ -7,7 +7,7 @@ import numpy as np
 
 from .report import Check
 
-# MODEL.md §4: name -> (causality, variability, type, start or None)
+# docs/model.md §4: name -> (causality, variability, type, start or None)
 CONTRACT = {
     "alpha": ("parameter", "fixed", "Real", 3.0),
     "mu": ("parameter", "fixed", "Real", 3.0),
@@ -66,7 +66,7 @@ def static_checks(fmu_path):
     if problems:
         return checks
     found = contract_problems(read_model_description(fmu_path))
-    checks.append(Check("static/contract", "interface contract (MODEL.md §4: names, causality, variability, starts)",
+    checks.append(Check("static/contract", "interface contract (docs/model.md §4: names, causality, variability, starts)",
                         "as specified" if not found else "; ".join(found), "as specified", not found,
                         dict(problems=found)))
     return checks
