@@ -65,7 +65,7 @@ def plot_edelta0(d, path, *, dpi=150):
     fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(12, 4.8))
     t1, t2 = d["theta_1"], d["theta_2"]
     th = np.linspace(t1 + 1e-6, t2 - 1e-6, 400)
-    ax_a.plot(th, an.e_zero(th, alpha=al, mu=mu), "k-", lw=1.5, label=r"$e(0,\theta_0)$, eq eDeltaZero")
+    ax_a.plot(th, an.e_zero(th, alpha=al, mu=mu), "k-", lw=1.5, label=r"$e(0,\theta_0)$, the closed form")
     for eps, style in zip(sorted({q["epsilon"] for q in d["a"]}, reverse=True), ("o", "x")):
         pts = [q for q in d["a"] if q["epsilon"] == eps]
         ax_a.plot([q["theta0"] for q in pts], [q["e_simulated"] for q in pts], style, color="tab:red",
@@ -143,10 +143,10 @@ def plot_video(d, path, *, dpi=150):
         ax_b.plot(r["w"][m], r["y"][m] / eps, "-", color=colours[name], lw=1.6, label=f"{name} (FMU)")
     ws = np.linspace(w_stick, 0, 50)
     ax_b.plot(ws, ws / lam, "-", color="tab:red", lw=4, alpha=0.45, zorder=1,
-              label=r"$\gamma^u$: $\hat y = w/\lambda_+$ (eq unstableManifoldHaty)")
+              label=r"$\gamma^u$: $\hat y = w/\lambda_+$, the unstable manifold")
     ax_b.plot(wline, -delta * wline, "k--", lw=1, label=r"$\hat y + \delta w = 0$")
     ax_b.plot([w_stick], [w_stick / lam], "o", mfc="none", color="k", ms=9,
-              label=r"stick starts (eq z2EpsPi2)")
+              label=r"stick starts (end of slipping compression)")
     ax_b.plot([g["predicted_w"]], [-delta * g["predicted_w"]], "s", mfc="none", color="k", ms=9,
               label=r"lift-off $w = e v_0$ (Thm 1)")
     green = traj["green"]
