@@ -184,3 +184,22 @@ def test_iwc_marks_a_case_outside_the_asymptotic_regime_with_the_reason(fmu_path
     assert inside["regime"]["inside"] is True and inside["regime"]["measure"] == pytest.approx(8e-4)
     assert "eps (1 + delta)^3 > 2e-2" in run("iwc", "--help", check_rc=0).stdout.replace("\n", " ").replace(
         "  ", " ")
+
+
+def test_ctrl_c_during_a_validation_is_one_line_with_status_130_and_leaves_nothing(fmu_path, tmp_path):
+    import os
+    import signal
+    import subprocess
+    from test_cli import painleve_command
+    before = leftovers()
+    p = subprocess.Popen(painleve_command() + ["validate", fmu_path, "--report", str(tmp_path / "v.md")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and len(leftovers()) == len(before):   # its Experiment is running
+        time.sleep(0.02)
+    os.killpg(p.pid, signal.SIGINT)
+    _, stderr = p.communicate(timeout=60)
+    assert p.returncode == 130
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and "interrupted" in lines[0] and "Traceback" not in stderr, stderr
+    assert leftovers() == before and not (tmp_path / "v.md").exists()

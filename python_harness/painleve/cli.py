@@ -15,7 +15,8 @@ import signal
 import sys
 import time
 
-from .cli_parser import DEFAULTS, Interrupted, RunError, UsageError, build_parser, fmu_file, output_path
+from .cli_parser import (DEFAULTS, Interrupted, RunError, UsageError, build_parser, fmu_file, one_line,
+                         output_path)
 from .report import to_json
 
 
@@ -211,7 +212,7 @@ def cmd_sweep(args):
     except OSError as err:
         if args.scheduler and not getattr(err, "filename", None):
             raise RunError(f"painleve sweep: cannot reach the dask scheduler {args.scheduler} "
-                           f"({_one_line(err)}); check the address, or leave out --scheduler for a local "
+                           f"({one_line(err)}); check the address, or leave out --scheduler for a local "
                            f"cluster") from None
         raise
     df = ResultStore(args.out).read()
@@ -229,10 +230,6 @@ def _interrupt(signum, frame):
 
 
 COMMANDS = {"iwc": cmd_iwc, "validate": cmd_validate, "figures": cmd_figures, "sweep": cmd_sweep}
-
-
-def _one_line(err):
-    return " ".join(str(err).split()) or type(err).__name__
 
 
 def user_error(err, command):
@@ -257,10 +254,10 @@ def user_error(err, command):
     if isinstance(err, MemoryError):
         return 1, f"{where}: out of memory; ask for fewer cases or points"
     if isinstance(err, OSError) and getattr(err, "filename", None):
-        return 2, (f"{where}: cannot use {err.filename} ({err.strerror or _one_line(err)}); "
+        return 2, (f"{where}: cannot use {err.filename} ({err.strerror or one_line(err)}); "
                    f"give a path that exists and can be written")
     if isinstance(err, OSError):
-        return 1, f"{where}: {_one_line(err)}"
+        return 1, f"{where}: {one_line(err)}"
     return None
 
 
@@ -283,7 +280,7 @@ def main(argv=None):
         if known is None:
             if os.environ.get("PAINLEVE_TRACEBACK"):
                 raise
-            known = 1, (f"painleve {command or ''}: internal error {type(err).__name__}: {_one_line(err)} "
+            known = 1, (f"painleve {command or ''}: internal error {type(err).__name__}: {one_line(err)} "
                         f"(a bug: please report it with the command; PAINLEVE_TRACEBACK=1 shows the traceback)")
         status, line = known
         print(f"error: {line}", file=sys.stderr)

@@ -74,13 +74,6 @@ epsilon_value = in_range("epsilon", "eps", ": the contact stiffness is eps^-2, s
                                            "such as --eps 1e-4")
 
 
-def positive(text):
-    x = _number(text)
-    if x <= 0:
-        raise argparse.ArgumentTypeError(f"{text} is not > 0")
-    return x
-
-
 def dpi_value(text):
     x = _number(text)
     if not 10 <= x <= 1200:
@@ -161,7 +154,7 @@ def fmu_file(path, *, probe=True):
     try:
         md = read_model_description(str(p))
     except Exception as err:
-        raise UsageError(f"{p} has no readable modelDescription.xml ({_one_line(err)}); "
+        raise UsageError(f"{p} has no readable modelDescription.xml ({one_line(err)}); "
                          f"rebuild it with `bash run.sh main`") from None
     if not (md.fmiVersion.startswith("2.") or md.fmiVersion.startswith("3.")):
         raise UsageError(f"{p} is an FMI {md.fmiVersion} FMU; painleve runs FMI 2.0 and 3.0 (build/PainleveRod.fmu, "
@@ -190,7 +183,8 @@ def _fmi_version(p):
         return None
 
 
-def _one_line(err):
+def one_line(err):
+    """An exception's message on one line (what the CLI prints)."""
     return " ".join(str(err).split()) or type(err).__name__
 
 
