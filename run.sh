@@ -10,8 +10,11 @@ PY=$VENV/bin/python
 
 log() { printf '== %s\n' "$*" >&2; }
 
-# System packages the build and tests need (Debian names), installed only if missing.
-APT_PACKAGES=(python3-venv libsundials-dev clang libclang-rt-14-dev valgrind)
+# System packages (Debian names), installed only if missing: what the build and the main job
+# need, and what only the tests add (clang and its sanitizer runtime, valgrind: the C
+# robustness tests).
+APT_PACKAGES=(python3-venv libsundials-dev)
+APT_TEST_PACKAGES=(clang libclang-rt-14-dev valgrind)
 apt_install() {
     local missing=()
     for p in "$@"; do
@@ -107,6 +110,12 @@ python_setup() {
     "$PY" -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
 }
 
+# The test tools of the Python side (pytest), for `bash run.sh test` only.
+test_python_setup() {
+    log "pip install (pinned, tests/requirements.txt)"
+    "$PY" -m pip install -q --disable-pip-version-check -r tests/requirements.txt
+}
+
 build_fmu() {
     log "building PainleveRod.fmu"
     cmake -S . -B build -DPython3_EXECUTABLE="$PY" -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -124,6 +133,6 @@ case "${1:-}" in
           printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png; the numbers in figures.json, a summary in figures.md)\n' \
               "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/"
           exit $rc ;;
-    test) setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
+    test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
     *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;
 esac

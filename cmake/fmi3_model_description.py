@@ -45,11 +45,20 @@ def convert(md2):
             "providesIntermediateUpdate": "false", "mightReturnEarlyFromDoStep": "true",
             "canReturnEarlyAfterIntermediateUpdate": "false", "hasEventMode": "true"})
 
+    # Units as FMI 2.0 has them (Unit, BaseUnit: the same elements and attributes in FMI 3.0).
+    units2 = md2.find("UnitDefinitions")
+    if units2 is not None:
+        units = ET.SubElement(root, "UnitDefinitions")
+        for unit in units2.findall("Unit"):
+            u = ET.SubElement(units, "Unit", {"name": unit.get("name")})
+            base = unit.find("BaseUnit")
+            if base is not None:
+                ET.SubElement(u, "BaseUnit", dict(base.attrib))
     types = ET.SubElement(root, "TypeDefinitions")
     for simple in md2.find("TypeDefinitions"):
         real = simple.find("Real")
         ET.SubElement(types, "Float64Type", {"name": simple.get("name"), "description": simple.get("description"),
-                                             "quantity": real.get("quantity")})
+                                             **{k: real.get(k) for k in ("quantity", "unit") if real.get(k)}})
     categories = ET.SubElement(root, "LogCategories")
     for category in md2.find("LogCategories"):
         ET.SubElement(categories, "Category", dict(category.attrib))
@@ -60,7 +69,7 @@ def convert(md2):
         typed = next(iter(v))
         attrib = {k: v.get(k) for k in ("name", "valueReference", "description", "causality", "variability", "initial")
                   if v.get(k) is not None}
-        for k in ("declaredType", "start", "min", "max", "nominal"):
+        for k in ("declaredType", "quantity", "unit", "start", "min", "max", "nominal"):
             if typed.get(k) is not None:
                 attrib[k] = typed.get(k)
         if typed.get("derivative"):
@@ -69,7 +78,8 @@ def convert(md2):
     first = 1 + max(int(v.get("valueReference")) for v in variables)
     ET.SubElement(out, "Float64", {"name": "time", "valueReference": str(first + len(INDICATORS)),
                                    "causality": "independent", "variability": "continuous",
-                                   "description": "the paper's dimensionless time"})
+                                   "description": "the paper's dimensionless time", "quantity": "Time",
+                                   "unit": "dimensionless"})
     for k, (name, description) in enumerate(INDICATORS):
         ET.SubElement(out, "Float64", {"name": name, "valueReference": str(first + k), "description": description,
                                        "causality": "local", "variability": "continuous"})

@@ -1,9 +1,37 @@
-"""Fixtures shared by the FMU tests: the built FMU, found where run.sh builds it."""
+"""Fixtures shared by the FMU tests: the built FMU, found where run.sh builds it; and the
+temporary directory of the whole session, checked at its end for what the harness left."""
+import os
 import pathlib
+import shutil
+import tempfile
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+# The suite's own temporary directory (inherited by every command it starts), so that what the
+# harness leaves behind is this run's and nobody else's on a shared machine.
+SESSION_TMP = pathlib.Path(tempfile.mkdtemp(prefix="pytest-painleve-tmp-"))
+os.environ["TMPDIR"] = str(SESSION_TMP)
+tempfile.tempdir = None         # gettempdir() reads TMPDIR again
+
+
+def leftovers():
+    """The harness's temporary files and directories (painleve-*) in the session's temporary directory."""
+    return sorted(p.name for p in SESSION_TMP.glob("painleve-*"))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def nothing_left_behind():
+    """After the whole suite (failed runs, interrupted sweeps, FMUs that do not load included), the
+    harness has removed every painleve-* file and directory it made: an error at teardown otherwise."""
+    yield
+    import gc
+    gc.collect()                # instances whose owners the tests dropped
+    left = leftovers()
+    if not left:
+        shutil.rmtree(SESSION_TMP, ignore_errors=True)
+    assert not left, f"left in {SESSION_TMP}: {left}"
 
 
 @pytest.fixture(scope="session")

@@ -41,13 +41,14 @@ def run_fmi_sim(fmu_path, tmp_path, interface, *, start_values=None, stop_time=N
 def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path):
     """A copy of the FMI 3.0 FMU that fmi-sim 0.7.0 (fmi-schema 0.8.0) parses.
 
-    Its Float64 variable element has no `nominal` attribute (FMI 3.0's
-    fmi3Variable.xsd has one: RealVariableAttributes), so it refuses the FMU with
-    'unknown field "nominal" in element "FmiFloat64"'. The copy is the same FMU
-    with those attributes (y's and w's) left out of modelDescription.xml: the
-    binary is untouched, and the nominals there only serve an importer's error
-    control, which fmi-sim does not have (fixed-step Euler; in Co-Simulation the
-    FMU's CVODE takes its nominals from the model, not from the XML)."""
+    Its Float64 variable element has no `nominal`, `unit` or `quantity` attribute
+    (FMI 3.0's fmi3Variable.xsd has both: RealVariableAttributes), so it refuses
+    the FMU with 'unknown field "unit" (or another) in element "FmiFloat64"'.
+    The copy is the same FMU with those attributes left out of
+    modelDescription.xml: the binary is untouched, units are for people, and the
+    nominals only serve an importer's error control, which fmi-sim does not have
+    (fixed-step Euler; in Co-Simulation the FMU's CVODE takes its nominals from
+    the model, not from the XML)."""
     import re
     import zipfile
 
@@ -58,6 +59,8 @@ def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path):
             if item.filename == "modelDescription.xml":
                 text, n = re.subn(r' nominal="[^"]*"', "", data.decode())
                 assert n == 2, f"expected the nominals of y and w, found {n}"
+                text = re.sub(r' unit="[^"]*"', "", text)
+                text = re.sub(r'(<Float64 [^>]*?) quantity="[^"]*"', r"\1", text)
                 data = text.encode()
             dst.writestr(item, data)
     return out

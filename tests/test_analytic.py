@@ -121,12 +121,11 @@ def test_theta_1_2_are_zeros_of_p_plus(alpha, mu):
     assert np.all(A.p_plus(np.linspace(t1, t2, 50)[1:-1], alpha=alpha, mu=mu) < 0)
 
 
-def test_wedge_values_from_model_md():
+def test_wedge_values_of_docs_model_md():
     assert round(A.theta_1(alpha=3, mu=1.4), 4) == 0.9702
     assert round(A.theta_2(alpha=3, mu=1.4), 4) == 1.2209
-    # MODEL.md: "wide wedge (0.439, 1.454)"; theta_1 = 0.43844 there, so MODEL.md's 0.439 is
-    # rounded up: check to the quoted precision only
-    assert abs(A.theta_1(alpha=3, mu=3) - 0.439) < 1e-3
+    # docs/model.md §3: "wide wedge (0.4384, 1.454)"
+    assert round(A.theta_1(alpha=3, mu=3), 4) == 0.4384
     assert round(A.theta_2(alpha=3, mu=3), 3) == 1.454
     th = np.linspace(0.9702, 1.2209, 200)[1:-1]
     assert np.max(-A.p_plus(th, alpha=3, mu=1.4)) <= 0.09  # "thin (|p_+| <= 0.09)"

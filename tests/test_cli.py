@@ -92,7 +92,7 @@ def test_iwc_json_on_both_sides_of_the_separatrix(fmu_path):
     (["iwc", "--theta0", "0.9463", "--phi0", "1.6654"], ["w10", "give --w10 < 0"]),
     (["iwc", "--v0", "-1"], ["v0", "give --v0 > 0"]),
     (["sweep", "--gamma", "1:2:3"], ["--gamma"]),
-    (["sweep", "--eps", "0:1e-3:3"], ["--eps", "[1e-8, 1)"]),
+    (["sweep", "--eps", "0:1e-3:3"], ["--eps", "[1e-8, 1]"]),
     (["sweep", "--theta0", "0.5:1.4"], ["lo:hi:n"]),
     (["figures", "--only", "nope"], ["GB, eDelta0, video"]),
     (["validate", "/nonexistent/PainleveRod.fmu"], ["no FMU at /nonexistent"]),
@@ -181,7 +181,8 @@ def test_figures_are_written_as_pngs(figures):
         assert str(out / name) in printed
         image = matplotlib.image.imread(out / name)
         assert image.shape[0] > 300 and image.shape[1] > 500 and image.std() > 0.05
-    assert "fig:GB" in (out / "figures.md").read_text()
+    summary = (out / "figures.md").read_text()
+    assert "(fig_GB.png)" in summary and "fig:" not in summary       # no LaTeX labels in what a user reads
 
 
 def test_fig_gb_points_lie_in_the_analytic_quadrants(figures):
@@ -253,9 +254,12 @@ def test_a_sweep_on_two_dask_workers_gives_the_numbers_of_the_serial_sweep(fmu_p
 
 
 def test_an_interrupted_sweep_resumes_without_recomputing_finished_cases(fmu_path, tmp_path):
+    """SIGINT to the whole process group (Ctrl-C in a terminal) in the middle of a dask sweep: one
+    line saying how many cases are saved and how to resume, none of distributed's ERROR lines; the
+    same command then finishes the sweep, each case once."""
     out = tmp_path / "sweep.csv"
     args = ["sweep", "--fmu", fmu_path, "--theta0", "0.5:1.4:50", "--phi0", "0.3,0.6", "--eps", "1e-4,1e-5",
-            "--batch", 10, "--workers", 2, "--out", out]
+            "--batch", 10, "--workers", 2, "--out", out, "--no-progress"]
     p = subprocess.Popen(painleve_command() + [str(a) for a in args], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True, start_new_session=True)
     deadline = time.monotonic() + 120
@@ -266,16 +270,19 @@ def test_an_interrupted_sweep_resumes_without_recomputing_finished_cases(fmu_pat
     os.killpg(p.pid, signal.SIGINT)          # Ctrl-C in a terminal: the whole process group
     stdout, stderr = p.communicate(timeout=60)
     assert p.returncode == 130, stdout + stderr
-    assert "interrupted" in stderr and "run the same command to resume" in stderr and "Traceback" not in stderr
+    assert "Traceback" not in stderr and "ERROR" not in stderr and "distributed" not in stderr, stderr
+    errors = [line for line in stderr.splitlines() if line.startswith("error:")]
+    assert len(errors) == 1 and "run the same command to resume" in errors[0], stderr
     before = out.read_text()
     done = before.count("\n") - 1
     assert 30 <= done < 200
+    assert f"interrupted; {done} of 200 cases are saved in {out}" in errors[0]
     r = run(*args, check_rc=0)
     assert f"resuming {out}: {done} of 200 cases already done, {200 - done} to run" in r.stderr
     after = out.read_text()
     assert after.startswith(before)          # finished rows untouched, the rest appended
     ids = pd.read_csv(out)["id"]
-    assert sorted(ids) == list(range(200))   # each case once: none recomputed, none lost
+    assert sorted(ids) == list(range(200))   # each case once: none recomputed, none lost, no duplicate
 
 
 def test_a_csv_row_cut_by_a_crash_is_dropped_and_rerun(fmu_path, tmp_path):

@@ -129,7 +129,7 @@ def test_iwc_returns_with_w_equal_to_e_v0(fmu_path, solver, rtol, tolerance):
     h = p["epsilon"] / 100
     kw = dict(rtol=rtol, output_interval=2e-4) if solver == "CVode" else dict(step_size=h, output_interval=h)
     r = simulate(fmu_path, 4e-3, solver=solver, **kw, **p)
-    # compression, stick, the O(eps^2) slip at the fold (MODEL.md §2; shorter
+    # compression, stick, the O(eps^2) slip at the fold (docs/model.md §2; shorter
     # than one Euler step, so Euler may take fold and lift-off in one event), flight
     seen = [ph for ph in phases(r) if ph != (True, -1)]
     assert seen[:3] == [(True, 1), (True, 0), (False, -1)]
@@ -149,7 +149,7 @@ STICK_NO_DAMPING = dict(alpha=3, mu=3, delta=0.0, theta=1.0, phi=0.5, v=1.0, y=0
 
 
 def test_energy_never_increases_through_a_stick_without_damping(fmu_path):
-    # The exact Filippov field holds v' = 0 with the friction force F_T of MODEL.md §1, which
+    # The exact Filippov field holds v' = 0 with the friction force F_T of docs/model.md §1, which
     # does no work (F_T v = 0): E is constant while sticking, falls while slipping, constant in
     # flight. Proposition lem:Filippov's leading-order field drops a and gains phi^3 sin cos.
     eps, rtol = 1e-3, 1e-9

@@ -1,7 +1,7 @@
 """The solve_ivp reference (painleve.reference) against the paper and against the FMU.
 
-Two independent implementations of MODEL.md (sticking by the exact Filippov
-field, which MODEL.md §1 states to leading order) must agree to within their solvers'
+Two independent implementations of docs/model.md (sticking by the exact Filippov
+field, which docs/model.md §1 states to leading order) must agree to within their solvers'
 tolerances, and each must meet the physics: Theorem 1's e, Theorem 2's w1*, the
 energy balance. Expected values come from analytic.py's closed forms, from
 closed-form free flight, or from the energy written out here; none is copied
@@ -38,7 +38,7 @@ def wedge_points(alpha=3.0, mu=3.0, n=3):
 
 THEOREM1 = [Case(theta0=th, delta=d, epsilon=eps)
             for th in wedge_points() for d in (0.0, 1.0, 3.0) for eps in (1e-3, 1e-4)]
-VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, alpha=3.0, mu=3.0)   # MODEL.md figure video
+VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0, alpha=3.0, mu=3.0)   # the two rods of `painleve figures` (fig_video.png)
 
 
 @pytest.fixture(scope="module")
@@ -151,7 +151,7 @@ def test_energy_rate_is_the_power_of_the_contact_forces(mode):
         exact = grad @ rods["exact"].rhs(mode)(0.0, x)
         assert exact == pytest.approx(power, rel=1e-9, abs=1e-9)
         if mode == STICK:
-            # The paper's leading-order field (MODEL.md) drops a from the Filippov weights: it gains phi^3 sin cos.
+            # The paper's leading-order field (docs/model.md) drops a from the Filippov weights: it gains phi^3 sin cos.
             gain = x[5] ** 3 * math.sin(x[4]) * math.cos(x[4])
             assert grad @ rods["paper"].rhs(mode)(0.0, x) == pytest.approx(power + gain, rel=1e-9, abs=1e-9)
 
@@ -178,7 +178,7 @@ def test_energy_never_increases_through_an_iwc_with_the_exact_filippov_field(met
 
 def test_the_papers_sticking_field_gains_energy_the_exact_one_and_the_fmu_do_not(fmu_path):
     # delta = 0: nothing dissipates while sticking. With the paper's leading-order field
-    # (MODEL.md's) E gains int phi^3 sin cos dt over the stick, O(eps); with the exact field
+    # (docs/model.md's) E gains int phi^3 sin cos dt over the stick, O(eps); with the exact field
     # (the default, the FMU's) nothing.
     gains = {}
     for field in ("paper", "exact"):
@@ -203,7 +203,7 @@ def test_the_papers_sticking_field_gains_energy_the_exact_one_and_the_fmu_do_not
 # ----------------------------------------------------------- the integrator
 @pytest.mark.parametrize("theta", [0.7, 1.3, 2.0, 2.5])    # a < 0: backward fold; a > 0: forward fold
 def test_sticking_friction_meets_the_slip_friction_at_the_folds(theta):
-    # MODEL.md: F_T = s mu F_N slipping, (a + alpha sin cos F_N)/(1 + alpha sin^2) sticking;
+    # docs/model.md: F_T = s mu F_N slipping, (a + alpha sin cos F_N)/(1 + alpha sin^2) sticking;
     # on the fold a + q_s F_N = 0 the two are equal, and inside the cone |F_T| < mu F_N.
     rod, phi, eps = Rod(), 0.9, 1e-3
     k = rod.coefficients(theta, phi)

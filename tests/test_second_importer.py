@@ -59,8 +59,9 @@ def test_the_default_experiment_is_an_iwc_under_fmi_sim(fmu_path, tmp_path):
 @pytest.mark.parametrize("case", [DEFAULT, OTHER], ids=["default", "eps1e-4"])
 def test_co_simulation_agrees_with_fmpy_to_solver_tolerance(fmu_path, tmp_path, cvode, case):
     stop = stop_time(case, fmu_path)
-    theirs = run_fmi_sim(fmu_path, tmp_path, "CS", start_values=start_values(case), stop_time=stop)
-    interval = stop / 500                                   # fmi-sim's default grid
+    interval = stop / 500       # one grid for both, explicit: each master's default is the DefaultExperiment's stepSize
+    theirs = run_fmi_sim(fmu_path, tmp_path, "CS", start_values=start_values(case), stop_time=stop,
+                         output_interval=interval)
     ours = fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", start_values=start_values(case),
                              stop_time=stop, output_interval=interval, output=STATES + ["mode", "contact"])
     assert len(ours) == len(theirs)

@@ -109,14 +109,16 @@ import sys
 from fmpy.fmi1 import FMICallException
 from painleve.experiment import Experiment
 messages = []
-fmu = Experiment(sys.argv[1], fmi_type="CoSimulation").instantiate(on_message=lambda *m: messages.append(m))
-fmu.setupExperiment(tolerance=1e-30, startTime=0.0)
-fmu.enterInitializationMode()
-fmu.exitInitializationMode()
-try:
-    fmu.doStep(0.0, 0.1)
-except FMICallException:
-    print(messages[-1][2])
+with Experiment(sys.argv[1], fmi_type="CoSimulation") as experiment:   # removes its extracted copy
+    fmu = experiment.instantiate(on_message=lambda *m: messages.append(m))
+    fmu.setupExperiment(tolerance=1e-30, startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    try:
+        fmu.doStep(0.0, 0.1)
+    except FMICallException:
+        print(messages[-1][2])
+    fmu.freeInstance()
 """
 
 

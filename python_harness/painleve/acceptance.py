@@ -27,9 +27,30 @@ LIFT_OFF_W = 5.0
 SEPARATRIX_TOLERANCE = 0.02
 
 
+# Why: e ~ delta^-2 for large delta while the corrections the theorems drop are O(eps) over a stick
+# of fast time ~ 1 + delta, so their size relative to e is ~ eps (1 + delta)^3; the asymptotics
+# (eps -> 0) describe a case only where that is small.
+REGIME_RULE = "eps (1 + delta)^3 <= 2e-2"
+
+
+def regime_measure(epsilon, delta):
+    """eps (1 + delta)^3: the relative size of the corrections the paper's asymptotics drop."""
+    return epsilon * (1 + delta) ** 3
+
+
 def in_regime(epsilons, delta):
     """The epsilons at which a case with damping delta is in the asymptotic regime."""
-    return [eps for eps in epsilons if eps * (1 + delta) ** 3 <= REGIME]
+    return [eps for eps in epsilons if regime_measure(eps, delta) <= REGIME]
+
+
+def regime_of(case):
+    """(inside, reason): whether the paper's asymptotics are expected to hold for `case`, and why."""
+    measure = regime_measure(case.epsilon, case.delta)
+    if measure <= REGIME:
+        return True, f"eps (1 + delta)^3 = {measure:.3g} <= {REGIME:g}"
+    return False, (f"eps (1 + delta)^3 = {measure:.3g} > {REGIME:g}: the corrections the asymptotics drop are of "
+                   f"relative size eps (1 + delta)^3, so the predictions are not expected to hold; an eps below "
+                   f"{REGIME / (1 + case.delta) ** 3:.2g} is inside")
 
 
 def power_rate(epsilons, errors):

@@ -15,7 +15,8 @@ import signal
 import sys
 import time
 
-from .cli_parser import DEFAULTS, Interrupted, RunError, UsageError, build_parser, fmu_file
+from .cli_parser import (DEFAULTS, Interrupted, RunError, UsageError, build_parser, fmu_file, one_line,
+                         output_path)
 from .report import to_json
 
 
@@ -48,6 +49,7 @@ def _fmt(x):
 def iwc_report(case, o):
     """(heading lines, table rows) for one simulated case beside its predictions."""
     from . import analytic as an
+    from .acceptance import regime_of
     predicted = an.predict(case)
     quadrant = {1: "inconsistent, b < 0", 2: "indeterminate, b > 0"}[predicted.theorem]
     lam = predicted.lambda_plus
@@ -55,6 +57,8 @@ def iwc_report(case, o):
                f"{an.p_plus(case.theta0, alpha=case.alpha, mu=case.mu):.4g}): alpha={case.alpha:g} mu={case.mu:g} "
                f"delta={case.delta:g} eps={case.epsilon:g}; theta0={case.theta0:g} phi0={case.phi0:g} "
                f"v0={case.v0:g} w(0)=eps*{case.w10:g}"]
+    inside, reason = regime_of(case)
+    heading.append(f"asymptotic regime: {'inside' if inside else 'OUTSIDE'} ({reason})")
     if predicted.theorem == 2:
         heading.append(f"separatrix w1* = {predicted.w1_star:.6g}: the paper predicts "
                        f"{'IWC (w10 < w1*)' if predicted.iwc else 'lift-off (w10 > w1*)'}")
@@ -99,7 +103,7 @@ def cmd_iwc(args):
     if args.json:
         row = outcome.as_row()
         print(to_json({"fmu": fmu, "interface": args.interface, "case": {k: row[k] for k in DEFAULTS},
-                     "predicted": predictions(case),
+                     "predicted": predictions(case), "regime": _regime_json(case),
                      "simulated": {k: row[k] for k in ("iwc", "w", "theta", "phi", "v", "t_return",
                                                        "compression", "stick", "lift_off", "flight_back",
                                                        "events")},
@@ -116,12 +120,21 @@ def cmd_iwc(args):
     return 0
 
 
+def _regime_json(case):
+    from .acceptance import REGIME, regime_measure, regime_of
+    inside, reason = regime_of(case)
+    return {"inside": inside, "measure": regime_measure(case.epsilon, case.delta), "limit": REGIME,
+            "reason": reason}
+
+
 # ------------------------------------------------------------------ validate
 def cmd_validate(args):
     from . import report
     from .sweep import FmuBlob
     from .validate import validate
-    fmu = fmu_file(args.fmu)
+    fmu = fmu_file(args.fmu, probe=False)       # one that does not instantiate fails a check (exit 1)
+    if args.report:
+        output_path(args.report, "painleve validate: --report")
     interfaces = None if args.interface == "all" else [args.interface]
     start = time.monotonic()
     checks = validate(fmu, interfaces=interfaces, sample=args.sample)
@@ -159,6 +172,7 @@ def cmd_figures(args):
             raise UsageError(f"painleve figures: unknown figure {unknown[0]!r}; --only takes a comma-separated "
                              f"subset of {', '.join(FIGURES)}")
     fmu = fmu_file(args.fmu)
+    output_path(args.out, "painleve figures: --out", directory=True)
     written = make_figures(fmu, args.out, only=only, dpi=args.dpi)
     for path in written:
         print(path)
@@ -176,10 +190,11 @@ def cmd_sweep(args):
         spec = SweepSpec.from_texts(texts, samples=args.random, seed=args.seed)
     except SpecError as err:
         raise UsageError(f"painleve sweep: {err}") from None
-    if spec.total == 0:
-        raise UsageError("painleve sweep: the sweep has no cases; give --random N > 0 or non-empty ranges")
-    if not args.serial and not args.scheduler and args.workers < 1:
-        raise UsageError("painleve sweep: --workers must be >= 1 (or use --serial)")
+    try:
+        ResultStore(args.out)       # the output's kind, from its name
+    except StoreError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+    output_path(args.out, "painleve sweep: --out", directory=pathlib.Path(args.out).suffix.lower() in (".parquet", ".pq"))
     fmu = fmu_file(args.fmu)
     # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly (even where a shell started it ignoring SIGINT).
     signal.signal(signal.SIGINT, signal.default_int_handler)
@@ -192,12 +207,13 @@ def cmd_sweep(args):
         raise UsageError(f"painleve sweep: {err}") from None
     except KeyboardInterrupt:
         done = len(ResultStore(args.out).read()) if pathlib.Path(args.out).exists() else 0
-        raise Interrupted(f"painleve sweep: interrupted; {done} of {spec.total} cases are in {args.out}: "
-                       f"run the same command to resume") from None
+        raise Interrupted(f"painleve sweep: interrupted; {done} of {spec.total} cases are saved in {args.out}: "
+                          f"run the same command to resume") from None
     except OSError as err:
-        if args.scheduler:
-            raise RunError(f"painleve sweep: cannot reach the dask scheduler {args.scheduler} ({err}); "
-                           f"check the address, or leave out --scheduler for a local cluster") from None
+        if args.scheduler and not getattr(err, "filename", None):
+            raise RunError(f"painleve sweep: cannot reach the dask scheduler {args.scheduler} "
+                           f"({one_line(err)}); check the address, or leave out --scheduler for a local "
+                           f"cluster") from None
         raise
     df = ResultStore(args.out).read()
     counts = df["status"].value_counts().to_dict()
@@ -216,34 +232,59 @@ def _interrupt(signum, frame):
 COMMANDS = {"iwc": cmd_iwc, "validate": cmd_validate, "figures": cmd_figures, "sweep": cmd_sweep}
 
 
+def user_error(err, command):
+    """The one place where a failure becomes what the user reads: (exit status, one line), or None
+    for a failure that is not the user's (a bug: its traceback is shown, on request)."""
+    from .experiment import FmuLoadError
+    from .outcome import SimulationError
+    where = f"painleve {command}" if command else "painleve"
+    if isinstance(err, UsageError):
+        return 2, str(err)
+    if isinstance(err, Interrupted):
+        return 130, str(err)
+    if isinstance(err, RunError):
+        return 1, str(err)
+    if isinstance(err, KeyboardInterrupt):
+        return 130, f"{where}: interrupted (Ctrl-C); nothing more was written"
+    if isinstance(err, FmuLoadError):
+        return 2, f"{where}: {err}; give a PainleveRod.fmu built for this machine"
+    if isinstance(err, SimulationError):
+        return 1, (f"{where}: the simulation failed: {err}; try a smaller --eps or --delta "
+                   f"(the asymptotic regime needs eps (1 + delta)^3 <= 2e-2)")
+    if isinstance(err, MemoryError):
+        return 1, f"{where}: out of memory; ask for fewer cases or points"
+    if isinstance(err, OSError) and getattr(err, "filename", None):
+        return 2, (f"{where}: cannot use {err.filename} ({err.strerror or one_line(err)}); "
+                   f"give a path that exists and can be written")
+    if isinstance(err, OSError):
+        return 1, f"{where}: {one_line(err)}"
+    return None
+
+
 def main(argv=None):
     parser = build_parser()
+    command = None
     try:
         args, extra = parser.parse_known_args(sys.argv[1:] if argv is None else argv)
+        command = args.command
         if extra:
             unknown = next((a for a in extra if a.startswith("-")), extra[0])
             raise UsageError(f"painleve {args.command}: unknown option or parameter {unknown!r} "
                              f"(see `painleve {args.command} --help` for the options)")
         return COMMANDS[args.command](args)
-    except UsageError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    except RunError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 130 if isinstance(err, Interrupted) else 1
-    except KeyboardInterrupt:
-        print("error: interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:     # `painleve ... | head`: the reader left; say nothing more
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
-    except Exception as err:
-        from .outcome import SimulationError
-        if isinstance(err, SimulationError):
-            print(f"error: the simulation failed: {err}; try a smaller --eps or --delta "
-                  f"(the asymptotic regime needs eps (1 + delta)^3 << 1)", file=sys.stderr)
-            return 1
-        raise
+    except (Exception, KeyboardInterrupt) as err:
+        known = user_error(err, command)
+        if known is None:
+            if os.environ.get("PAINLEVE_TRACEBACK"):
+                raise
+            known = 1, (f"painleve {command or ''}: internal error {type(err).__name__}: {one_line(err)} "
+                        f"(a bug: please report it with the command; PAINLEVE_TRACEBACK=1 shows the traceback)")
+        status, line = known
+        print(f"error: {line}", file=sys.stderr)
+        return status
 
 
 if __name__ == "__main__":

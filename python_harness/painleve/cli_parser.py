@@ -24,6 +24,10 @@ class Interrupted(RunError):
     """Stopped by Ctrl-C or SIGTERM: exit status 130 with this one-line message."""
 
 
+# The variables the harness reads and sets: an FMU without them is another model's.
+REQUIRED_VARIABLES = ("alpha", "mu", "delta", "epsilon", "x", "v", "y", "w", "theta", "phi", "mode", "contact")
+
+
 class Parser(argparse.ArgumentParser):
     """argparse that reports a bad argument in one line, with the way to the help,
     and reads -1e-3 as a number, not as an option."""
@@ -47,25 +51,33 @@ def _number(text):
     return x
 
 
-def epsilon_value(text):
+def _g(x):
+    """1e-08 as 1e-8, 1e+06 as 1e6: numbers as the help and docs/model.md write them."""
+    return f"{x:g}".replace("e+0", "e").replace("e-0", "e-").replace("e+", "e")
+
+
+def in_range(name, option, why=""):
+    """An argument type: a number inside the FMU's range of parameter `name` (case.RANGES)."""
+    from .case import RANGES
+    lo, hi = RANGES[name]
+
+    def check(text):
+        x = _number(text)
+        if not lo <= x <= hi:
+            raise argparse.ArgumentTypeError(f"{option} {text} is not in [{_g(lo)}, {_g(hi)}], the FMU's range{why}")
+        return x
+    check.__name__ = name       # argparse names the type in its messages
+    return check
+
+
+epsilon_value = in_range("epsilon", "eps", ": the contact stiffness is eps^-2, so give a small positive value "
+                                           "such as --eps 1e-4")
+
+
+def dpi_value(text):
     x = _number(text)
-    if not 1e-8 <= x < 1:
-        raise argparse.ArgumentTypeError(f"eps = {text} is not in [1e-8, 1): the contact stiffness is eps^-2, "
-                                         f"so give a small positive value such as --eps 1e-4")
-    return x
-
-
-def nonnegative(text):
-    x = _number(text)
-    if x < 0:
-        raise argparse.ArgumentTypeError(f"{text} is negative; give a value >= 0")
-    return x
-
-
-def positive(text):
-    x = _number(text)
-    if x <= 0:
-        raise argparse.ArgumentTypeError(f"{text} is not > 0")
+    if not 10 <= x <= 1200:
+        raise argparse.ArgumentTypeError(f"{text} is not in [10, 1200] dots per inch (a figure is ~10 inches wide)")
     return x
 
 
@@ -79,10 +91,50 @@ def count(text):
     return n
 
 
-def fmu_file(path):
+def at_least_one(text):
+    n = count(text)
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"{text} is not >= 1")
+    return n
+
+
+def scheduler_address(text):
+    """A dask scheduler's address, protocol://host:port or host:port (checked for form only: whether
+    one answers there is known when the sweep connects)."""
+    if not re.fullmatch(r"((tcp|tls|ucx|ws|wss)://)?[A-Za-z0-9._\-\[\]:]+:\d{1,5}", text):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a dask scheduler address such as tcp://host:8786")
+    return text
+
+
+def output_path(path, option, *, directory=False):
+    """The path a command will write (a file, or a directory with `directory`), made ready and probed
+    before any simulation runs, so that a path that cannot be written ends in one line at once
+    rather than after minutes of work."""
+    import tempfile
+    p = pathlib.Path(path)
+    where = p if directory else p.parent
+    blocking = next((a for a in [where, *where.parents] if a.exists()), None)
+    if blocking is not None and not blocking.is_dir():
+        raise UsageError(f"{option} {path}: {blocking} is a file, not a directory; give a path in a writable "
+                         f"directory")
+    try:
+        if p.exists() and directory != p.is_dir():
+            raise UsageError(f"{option} {path}: it is {'a file' if directory else 'a directory'}; "
+                             f"give {'a directory' if directory else 'a file name'}")
+        where.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=where):      # the directory takes a new file
+            pass
+    except OSError as err:
+        raise UsageError(f"{option} {path}: cannot write there ({err.strerror or err}); "
+                         f"give a path in a writable directory") from None
+    return str(p)
+
+
+def fmu_file(path, *, probe=True):
     """The FMU to use (--fmu, else $PAINLEVE_FMU, else build/PainleveRod.fmu where there is one, as in
     the repository after `bash run.sh`, else the one installed with the package), checked so that a
-    wrong path ends in one line saying what to do."""
+    wrong path ends in one line saying what to do: a missing file, not an FMU, another FMI version, another
+    model's FMU, no binary for this platform, and (with `probe`) one that does not load or instantiate."""
     from .experiment import BUNDLED_FMU
     given = path or os.environ.get("PAINLEVE_FMU") or \
         (BUNDLED_FMU if BUNDLED_FMU.is_file() and not os.path.exists(DEFAULT_FMU) else DEFAULT_FMU)
@@ -95,14 +147,56 @@ def fmu_file(path):
     if p.is_dir() or not zipfile.is_zipfile(p):
         raise UsageError(f"{p} is not an FMU (an FMU is a zip archive such as {DEFAULT_FMU}); give the .fmu file")
     from fmpy import platform, read_model_description, supported_platforms
+    version = _fmi_version(p)
+    if version is not None and not (version.startswith("2.") or version.startswith("3.")):
+        raise UsageError(f"{p} is an FMI {version} FMU; painleve runs FMI 2.0 and 3.0 (build/PainleveRod.fmu, "
+                         f"build/fmi3/PainleveRod.fmu)")
     try:
-        read_model_description(str(p))
+        md = read_model_description(str(p))
     except Exception as err:
-        raise UsageError(f"{p} has no readable modelDescription.xml ({err}); rebuild it with `bash run.sh main`")
+        raise UsageError(f"{p} has no readable modelDescription.xml ({one_line(err)}); "
+                         f"rebuild it with `bash run.sh main`") from None
+    if not (md.fmiVersion.startswith("2.") or md.fmiVersion.startswith("3.")):
+        raise UsageError(f"{p} is an FMI {md.fmiVersion} FMU; painleve runs FMI 2.0 and 3.0 (build/PainleveRod.fmu, "
+                         f"build/fmi3/PainleveRod.fmu)")
+    names = {v.name for v in md.modelVariables}
+    missing = [n for n in REQUIRED_VARIABLES if n not in names]
+    if missing:
+        raise UsageError(f"{p} is an FMU of the model {md.modelName!r}, not the Painleve rod (it has no variable "
+                         f"{', '.join(missing[:3])}{', ...' if len(missing) > 3 else ''}): give a PainleveRod.fmu")
     if platform not in supported_platforms(str(p)):
         raise UsageError(f"{p} has no binary for {platform} (it has {', '.join(supported_platforms(str(p)))}); "
                          f"compile it here first: python -m fmpy compile {p}")
+    if probe:
+        _instantiates(p)
     return str(p)
+
+
+def _fmi_version(p):
+    """The fmiVersion attribute of the FMU's model description, read before fmpy validates it against
+    the schema of a version it may not support (None if it cannot be read)."""
+    import xml.etree.ElementTree as ET
+    try:
+        with zipfile.ZipFile(p) as z:
+            return ET.fromstring(z.read("modelDescription.xml")).get("fmiVersion")
+    except Exception:
+        return None
+
+
+def one_line(err):
+    """An exception's message on one line (what the CLI prints)."""
+    return " ".join(str(err).split()) or type(err).__name__
+
+
+def _instantiates(p):
+    """An FMU whose binary does not load here, or that refuses to instantiate (a GUID that does not
+    match its binary, a broken build), is named now, in one line, not deep inside a run."""
+    from .experiment import Experiment, FmuLoadError
+    try:
+        with Experiment(str(p)):
+            pass
+    except FmuLoadError as err:
+        raise UsageError(f"{p}: {err}; rebuild it (`bash run.sh main`) or give another PainleveRod.fmu") from None
 
 
 # ------------------------------------------------------------------ the parser
@@ -117,17 +211,17 @@ def _case_options(parser, help_suffix=""):
                         "(default %(default)s)")
     g.add_argument("--v0", type=_number, default=DEFAULTS["v0"], help="horizontal velocity of the end, > 0 "
                    "(default %(default)s)")
-    g.add_argument("--delta", type=nonnegative, default=DEFAULTS["delta"], help="contact damping, >= 0 "
-                   "(default %(default)s)")
+    g.add_argument("--delta", type=in_range("delta", "delta"), default=DEFAULTS["delta"],
+                   help="contact damping, in [0, 1e6] (default %(default)s)")
     g.add_argument("--eps", "--epsilon", dest="epsilon", type=epsilon_value, default=DEFAULTS["epsilon"],
-                   help="compliance in [1e-8, 1); the contact stiffness is eps^-2 (default %(default)s)")
+                   help="compliance in [1e-8, 1] (the FMU's range); the contact stiffness is eps^-2 (default %(default)s)")
     g.add_argument("--w10", type=_number, default=DEFAULTS["w10"],
                    help="initial vertical velocity in the contact's scale, w(0) = eps*w10; Theorem 2 needs "
                         "w10 < 0, and predicts IWC for w10 < w1*, lift-off above (default %(default)s)")
-    g.add_argument("--alpha", type=positive, default=DEFAULTS["alpha"],
-                   help="m l^2 / I, > 0; 3 for a uniform rod (default %(default)s)")
-    g.add_argument("--mu", type=nonnegative, default=DEFAULTS["mu"],
-                   help="friction coefficient, >= 0; a Painleve wedge needs mu > 2 sqrt(1+alpha)/alpha "
+    g.add_argument("--alpha", type=in_range("alpha", "alpha"), default=DEFAULTS["alpha"],
+                   help="m l^2 / I, in [1e-6, 1e6]; 3 for a uniform rod (default %(default)s)")
+    g.add_argument("--mu", type=in_range("mu", "mu"), default=DEFAULTS["mu"],
+                   help="friction coefficient, in [0, 1e6]; a Painleve wedge needs mu > 2 sqrt(1+alpha)/alpha "
                         "(default %(default)s)")
 
 
@@ -163,7 +257,12 @@ def _add_iwc(sub):
                          description="Simulates one case from the floor (y = 0) with the FMU and prints the "
                                      "simulated outcome beside the paper's prediction: Theorem 1 (b < 0) gives "
                                      "IWC with w = e(delta, theta0) v0; Theorem 2 (b > 0) gives IWC below the "
-                                     "separatrix w1* and lift-off with w = O(eps) above it.")
+                                     "separatrix w1* and lift-off with w = O(eps) above it. The predictions are "
+                                     "asymptotic (eps -> 0): the corrections they drop are of relative size "
+                                     "eps (1 + delta)^3 (e ~ delta^-2 for large delta, the stick lasts a fast "
+                                     "time ~ 1 + delta), so a case with eps (1 + delta)^3 > 2e-2 is marked "
+                                     "OUTSIDE the asymptotic regime, with the reason, in the table and in "
+                                     "--json (\"regime\").")
     _case_options(iwc)
     _fmu_option(iwc)
     _interface_option(iwc)
@@ -189,14 +288,14 @@ def _add_validate(sub):
 
 def _add_figures(sub):
     fig = sub.add_parser("figures", allow_abbrev=False, help="the paper's figures from simulations of the FMU",
-                         description="Regenerates the paper's figures fig:GB, fig:eDelta0 (a, b) and video from "
+                         description="Regenerates the paper's figures (GB: the quadrants of the (theta, phi) plane; eDelta0: the coefficient e(0, theta0) and e(delta, theta0); video: two rods, one IWC, one lift-off) from "
                                      "simulations of the FMU, with the analytic curves beside the simulated "
                                      "points. Writes PNG files, figures.json (the numbers behind each plot) "
                                      "and figures.md (how far the points lie from the curves).")
     _fmu_option(fig)
     fig.add_argument("--out", default="out/figures", metavar="DIR", help="where to write (default %(default)s)")
     fig.add_argument("--only", metavar="NAMES", help="a comma-separated subset of GB, eDelta0, video")
-    fig.add_argument("--dpi", type=positive, default=150, help="PNG resolution (default %(default)s)")
+    fig.add_argument("--dpi", type=dpi_value, default=150, help="PNG resolution, 10 to 1200 (default %(default)s)")
 
 
 def _add_sweep(sub):
@@ -221,16 +320,16 @@ def _add_sweep(sub):
     for name, what in meaning.items():
         g.add_argument(f"--{name}", metavar="SPEC", help=f"{name} values ({what}; default {DEFAULTS[name]:g})")
     g.add_argument("--eps", "--epsilon", dest="epsilon", metavar="SPEC",
-                   help=f"epsilon values, each in [1e-8, 1) (default {DEFAULTS['epsilon']:g})")
-    sw.add_argument("--random", type=count, default=0, metavar="N",
-                    help="draw N random cases from the ranges instead of a grid")
+                   help=f"epsilon values, each in [1e-8, 1] (default {DEFAULTS['epsilon']:g})")
+    sw.add_argument("--random", type=at_least_one, default=0, metavar="N",
+                    help="draw N >= 1 random cases from the ranges instead of a grid")
     sw.add_argument("--seed", type=count, default=0, help="seed of the random sample (default 0)")
     sw.add_argument("--out", default="out/sweep.parquet", metavar="PATH",
                     help="results: a .csv file or a .parquet dataset (default %(default)s)")
-    sw.add_argument("--scheduler", metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
+    sw.add_argument("--scheduler", type=scheduler_address, metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
                     "(its workers need the painleve package; the FMU is sent to them)")
-    sw.add_argument("--workers", type=count, default=2, help="workers of the local cluster (default 2)")
-    sw.add_argument("--batch", type=count, default=200, help="cases per dask task (default 200)")
+    sw.add_argument("--workers", type=at_least_one, default=2, help="workers of the local cluster (default 2)")
+    sw.add_argument("--batch", type=at_least_one, default=200, help="cases per dask task (default 200)")
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     _fmu_option(sw)
     _interface_option(sw)

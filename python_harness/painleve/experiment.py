@@ -6,7 +6,7 @@ loop). It speaks fmpy's vocabulary: `fmi_type="ModelExchange"` or
 `"CoSimulation"`, `solver`, `relative_tolerance`, structured arrays.
 
 - `run(case)` reduces an IWC case (experiment `Case`: it starts on the floor,
-  y = 0, w = eps * w10, MODEL.md §3, and ends when the rod, having touched
+  y = 0, w = eps * w10, docs/model.md §3, and ends when the rod, having touched
   the floor, is back at y = 0 moving up) to its `Outcome`, through the fast
   loop of its interface: me_fast_loop (fmpy's CVode from event to event, the
   return exact) or cs_fast_loop (fmi2DoStep, the phases from the FMU's log).
@@ -51,6 +51,11 @@ OUTPUTS = STATES + ("mode", "contact")
 FMI2_ERROR = 3
 
 
+class FmuLoadError(RuntimeError):
+    """The FMU cannot be loaded or instantiated here (its binary does not load, it refuses to
+    instantiate: a GUID that does not match its binary, ...); the message says which."""
+
+
 def default_fmu():
     """The FMU installed with the package, if this installation has one."""
     if not BUNDLED_FMU.exists():
@@ -64,7 +69,7 @@ class Experiment:
     study of thousands of runs pays the unzip and the load once."""
 
     def __init__(self, fmu_path=None, *, fmi_type="ModelExchange", solver="CVode", relative_tolerance=None,
-                 steps_per_epsilon=100):
+                 steps_per_epsilon=100, tmp_dir=None):
         if fmi_type not in FMI_TYPES.values():
             raise ValueError(f"fmi_type must be 'ModelExchange' or 'CoSimulation', not {fmi_type!r}")
         if solver not in ("CVode", "Euler"):
@@ -73,13 +78,27 @@ class Experiment:
         self.fmi_type, self.solver = fmi_type, solver
         self.relative_tolerance, self.steps_per_epsilon = relative_tolerance, steps_per_epsilon
         self.model_description = read_model_description(self.fmu_path)
-        self._tmp = tempfile.mkdtemp(prefix="painleve-")
-        self.unzipdir = extract(self.fmu_path, self._tmp)
         self.vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
         self.messages = []      # the current run's log messages (status, category, message)
         self.solver_stats = {}  # the last Model Exchange fast loop's dict(nfev, nsteps)
-        self.instance = self.instantiate(on_message=lambda *m: self.messages.append(m))
         self._used = False
+        self.instance = None
+        # The extracted FMU lives in a painleve-* directory that close() removes; until __init__
+        # has returned nobody can call close(), so a failure here removes it itself.
+        self._tmp = tempfile.mkdtemp(prefix="painleve-", dir=tmp_dir)
+        try:
+            self.unzipdir = extract(self.fmu_path, self._tmp)
+            try:
+                self.instance = self.instantiate(on_message=lambda *m: self.messages.append(m))
+            except Exception as err:    # fmpy: "Failed to load shared library ...", "Failed to instantiate model"
+                text = " ".join(str(err).replace(str(self.unzipdir), "<FMU>").split())
+                if isinstance(err, OSError) or "shared library" in text:
+                    raise FmuLoadError(f"its binary does not load here ({text})") from err
+                said = [m for status, _, m in self.messages if status >= FMI2_ERROR]
+                raise FmuLoadError(f"the FMU refused to instantiate ({said[0] if said else text})") from err
+        except BaseException:
+            shutil.rmtree(self._tmp, ignore_errors=True)
+            raise
 
     def instantiate(self, *, fmi_type=None, instance_name="PainleveRod", guid=None, logging_on=False,
                     on_message=None):
@@ -111,8 +130,12 @@ class Experiment:
         return instance
 
     def close(self):
-        self.instance.freeInstance()
-        shutil.rmtree(self._tmp, ignore_errors=True)
+        try:
+            if self.instance is not None:
+                self.instance.freeInstance()
+                self.instance = None
+        finally:
+            shutil.rmtree(self._tmp, ignore_errors=True)
 
     def __enter__(self):
         return self

@@ -191,7 +191,7 @@ def summary_markdown(numbers, fmu_path):
     lines = [f"# The paper's figures from simulations of {fmu_path}", ""]
     if "GB" in numbers:
         g = numbers["GB"]
-        lines += ["## fig:GB (fig_GB.png)", "",
+        lines += ["## The quadrants of the (theta, phi) plane (fig_GB.png)", "",
                   f"{len(g['points'])} states on a grid, alpha = {g['params']['alpha']:g}, mu = {g['params']['mu']:g}, "
                   f"eps = {g['params']['epsilon']:g}: the FMU's rod names the analytic quadrant at "
                   f"{g['agreement']:.1%} of them (the others lie next to p_+ = 0, where the rigid picture "
@@ -200,7 +200,7 @@ def summary_markdown(numbers, fmu_path):
         d = numbers["eDelta0"]
         worst_a = max(abs(q["rel_error"]) for q in d["a"] if q["epsilon"] == E_EPSILONS[-1])
         worst_b = max(abs(q["rel_error"]) for q in d["b"])
-        lines += ["## fig:eDelta0 (fig_eDelta0.png)", "",
+        lines += ["## The coefficient e(delta, theta0) (fig_eDelta0.png)", "",
                   f"(a) w/v0 of the FMU beside e(0, theta0) across the wedge ({d['theta_1']:.4f}, {d['theta_2']:.4f}): "
                   f"largest relative deviation {worst_a:.2%} at eps = {E_EPSILONS[-1]:g}.",
                   f"(b) w/v0 beside e(delta, theta0) for theta0 = 1, 1.2: largest relative deviation "
@@ -208,7 +208,7 @@ def summary_markdown(numbers, fmu_path):
     if "video" in numbers:
         v = numbers["video"]
         g, b = v["rods"]["green"], v["rods"]["blue"]
-        lines += ["## video (fig_video.png)", "",
+        lines += ["## Two rods, one IWC, one lift-off (fig_video.png)", "",
                   f"Two rods 1e-3 apart at t = 0 (|(dy, dw)| = {v['separation_at_t0']:.3g}) graze y = 0 at "
                   f"t = {g['touch']['time']:.4f} with w = {g['touch']['w']:.3g} (green) and {b['touch']['w']:.3g} "
                   f"(blue), either side of eps w1* = {v['params']['epsilon'] * v['w1_star']:.3g}.",

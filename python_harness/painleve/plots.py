@@ -52,7 +52,7 @@ def plot_gb(d, path, *, dpi=150):
                 bbox=dict(boxstyle="round", fc="white", ec="0.6", alpha=0.85))
     ax.set_xlabel(r"$\theta$")
     ax.set_ylabel(r"$\phi$")
-    ax.set_title(rf"fig:GB — $(\theta,\phi)$-plane, $\alpha={p['alpha']:g}$, $\mu={p['mu']:g}$; points: what the "
+    ax.set_title(rf"Quadrants of the $(\theta,\phi)$-plane, $\alpha={p['alpha']:g}$, $\mu={p['mu']:g}$; points: what the "
                  rf"FMU's rod does ($\epsilon={p['epsilon']:g}$)", fontsize=10)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, framealpha=0.9)
     return _save(fig, path, dpi)
@@ -65,7 +65,7 @@ def plot_edelta0(d, path, *, dpi=150):
     fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(12, 4.8))
     t1, t2 = d["theta_1"], d["theta_2"]
     th = np.linspace(t1 + 1e-6, t2 - 1e-6, 400)
-    ax_a.plot(th, an.e_zero(th, alpha=al, mu=mu), "k-", lw=1.5, label=r"$e(0,\theta_0)$, eq eDeltaZero")
+    ax_a.plot(th, an.e_zero(th, alpha=al, mu=mu), "k-", lw=1.5, label=r"$e(0,\theta_0)$, the closed form")
     for eps, style in zip(sorted({q["epsilon"] for q in d["a"]}, reverse=True), ("o", "x")):
         pts = [q for q in d["a"] if q["epsilon"] == eps]
         ax_a.plot([q["theta0"] for q in pts], [q["e_simulated"] for q in pts], style, color="tab:red",
@@ -91,14 +91,14 @@ def plot_edelta0(d, path, *, dpi=150):
         ax_b.plot(large, an.e_large_delta(large, theta0, alpha=al, mu=mu), "--", color=colour, lw=1)
         pts = [q for q in d["b"] if q["theta0"] == theta0]
         ax_b.plot([q["delta"] for q in pts], [q["e_simulated"] for q in pts], "x", color="tab:red", ms=7)
-    ax_b.plot([], [], "k--", lw=1, label="asymptotes: eqs eDeltaSmall, eDeltaLarge")
+    ax_b.plot([], [], "k--", lw=1, label="asymptotes for small and large delta")
     ax_b.plot([], [], "x", color="tab:red", label=rf"FMU $w/v_0$, $\epsilon={d['b'][0]['epsilon']:g}$")
     ax_b.set_ylim(0, 1.15 * top)
     ax_b.set_xlabel(r"$\delta$")
     ax_b.set_ylabel(r"$e(\delta,\theta_0)$")
     ax_b.set_title(f"(b) $\\alpha={al:g}$, $\\mu={mu:g}$", fontsize=10)
     ax_b.legend(fontsize=8)
-    fig.suptitle("fig:eDelta0 — the horizontal coefficient of restitution: analytic curves, FMU points", fontsize=11)
+    fig.suptitle("The horizontal coefficient of restitution: analytic curves, FMU points", fontsize=11)
     return _save(fig, path, dpi)
 
 
@@ -143,10 +143,10 @@ def plot_video(d, path, *, dpi=150):
         ax_b.plot(r["w"][m], r["y"][m] / eps, "-", color=colours[name], lw=1.6, label=f"{name} (FMU)")
     ws = np.linspace(w_stick, 0, 50)
     ax_b.plot(ws, ws / lam, "-", color="tab:red", lw=4, alpha=0.45, zorder=1,
-              label=r"$\gamma^u$: $\hat y = w/\lambda_+$ (eq unstableManifoldHaty)")
+              label=r"$\gamma^u$: $\hat y = w/\lambda_+$, the unstable manifold")
     ax_b.plot(wline, -delta * wline, "k--", lw=1, label=r"$\hat y + \delta w = 0$")
     ax_b.plot([w_stick], [w_stick / lam], "o", mfc="none", color="k", ms=9,
-              label=r"stick starts (eq z2EpsPi2)")
+              label=r"stick starts (end of slipping compression)")
     ax_b.plot([g["predicted_w"]], [-delta * g["predicted_w"]], "s", mfc="none", color="k", ms=9,
               label=r"lift-off $w = e v_0$ (Thm 1)")
     green = traj["green"]

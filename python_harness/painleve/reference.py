@@ -1,6 +1,6 @@
 """A plain reference implementation of the compliant Painleve rod with scipy's solve_ivp.
 
-What it is: the model of MODEL.md §1-2 written the way a researcher would
+What it is: the model of docs/model.md §1-2 written the way a researcher would
 write it without the FMU: the right-hand side and Jacobian of each mode in
 numpy, integrated by ``scipy.integrate.solve_ivp`` (LSODA, DOP853, Radau or
 BDF) piecewise by mode, with terminal events on the switching surfaces and a

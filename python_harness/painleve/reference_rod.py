@@ -1,4 +1,4 @@
-"""The compliant Painleve rod of MODEL.md §1-2 as a researcher would write it without
+"""The compliant Painleve rod of docs/model.md §1-2 as a researcher would write it without
 the FMU, for painleve.reference: per mode its right-hand side and analytic Jacobian in
 numpy, its switching functions, and the rules that pick the mode after an event.
 
@@ -9,9 +9,9 @@ numpy, its switching functions, and the rules that pick the mode after an event.
   the default and the FMU's), the convex combination of the two slip fields
   that holds v' = 0: v' = 0, w' = b + S_w F_N - alpha sin cos a/k,
   phi' = S_phi F_N + alpha sin a/k (k = 1 + alpha sin^2), i.e. eq dynrodsc with
-  the sticking friction force F_T = (a + alpha sin cos F_N)/k of MODEL.md §1.
+  the sticking friction force F_T = (a + alpha sin cos F_N)/k of docs/model.md §1.
   ``filippov="paper"`` is the paper's leading-order field of Proposition
-  lem:Filippov (and MODEL.md §1), w' = b + S_w F_N, phi' = S_phi F_N: it drops
+  lem:Filippov (and docs/model.md §1), w' = b + S_w F_N, phi' = S_phi F_N: it drops
   the O(1) a-terms (O(eps) over a stick of duration O(eps): Theorem 1's limits
   are the same) and, unlike the exact field, does work while sticking: dE/dt
   gains phi^3 sin cos (tests/test_reference.py shows both).
@@ -60,7 +60,7 @@ class Rod:
 
     filippov picks the sticking field: "exact" (the convex combination of the slip
     fields that holds v' = 0, a included; what the FMU integrates) or "paper" (the
-    leading-order field of Proposition lem:Filippov as MODEL.md states it, which drops
+    leading-order field of Proposition lem:Filippov as docs/model.md states it, which drops
     a); see the module docstring."""
     alpha: float = 3.0
     mu: float = 3.0
@@ -116,7 +116,7 @@ class Rod:
         return 0.0 if mode == FLIGHT else self.force_bracket(x) / self.epsilon
 
     def friction_force(self, mode, x):
-        """F_T: s mu F_N slipping; the force that keeps v' = 0 sticking (MODEL.md §1)."""
+        """F_T: s mu F_N slipping; the force that keeps v' = 0 sticking (docs/model.md §1)."""
         F = self.normal_force(mode, x)
         if mode == STICK:
             sn, cs, phi = math.sin(x[THETA]), math.cos(x[THETA]), x[PHI]
@@ -168,7 +168,7 @@ class Rod:
         (a + q_- F_N)/((q_- - q_+) F_N) on slip+; Proposition lem:Filippov takes
         q_-/(q_- - q_+), i.e. drops a. The difference: w' gains -alpha sin cos a/k and
         phi' gains alpha sin a/k (k = 1 + alpha sin^2, a = -phi^2 cos): the effect of a
-        on the friction force that holds v = 0 (MODEL.md's F_T)."""
+        on the friction force that holds v = 0 (docs/model.md's F_T)."""
         al = self.alpha
         k, dk = 1.0 + al * sn * sn, 2.0 * al * sn * cs
         u, du = sn * cs * cs, cs ** 3 - 2.0 * sn * sn * cs        # A_w = alpha phi^2 u/k

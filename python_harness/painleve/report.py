@@ -57,6 +57,8 @@ def markdown(checks, *, fmu_path, sha256, seconds):
         return str(text).replace("|", "\\|")
     lines = [f"# Validation of {fmu_path}", "",
              f"SHA-256 `{sha256}`; {len(checks)} checks in {seconds:.1f} s: **{summary(checks)}**.", "",
+             "What each check runs and what its numbers mean: the glossary in the repository's "
+             "docs/model.md §5 (the model and the theorems: §1-3).", "",
              "| result | check | what | measured | limit |", "|---|---|---|---|---|"]
     for c in checks:
         lines.append(f"| {'PASS' if c.passed else '**FAIL**'} | `{c.id}` | {cell(c.what)} | {cell(c.measured)} | "

@@ -43,17 +43,19 @@ class FmuBlob:
 _EXPERIMENTS = {}   # in each process: (FMU digest, fmi_type) -> Experiment
 
 
-def experiment_for(blob, fmi_type):
-    """This process's Experiment for the FMU `blob`, created on first use."""
+def experiment_for(blob, fmi_type, tmp_dir=None):
+    """This process's Experiment for the FMU `blob`, created on first use. The FMU's bytes go to a
+    painleve-* directory only for the Experiment to extract them, and the directory goes at once
+    (the Experiment keeps its own extracted copy, which close() removes). `tmp_dir`: where, if it
+    exists here (the local cluster's workers: the driver removes it even if they are killed)."""
     key = (blob.digest, fmi_type)
     if key not in _EXPERIMENTS:
-        path = os.path.join(tempfile.gettempdir(), f"painleve-{blob.digest[:16]}.fmu")
-        if not os.path.exists(path):
-            tmp = f"{path}.{os.getpid()}.tmp"
-            with open(tmp, "wb") as f:
+        tmp_dir = tmp_dir if tmp_dir and os.path.isdir(tmp_dir) else None
+        with tempfile.TemporaryDirectory(prefix="painleve-", dir=tmp_dir) as tmp:
+            path = os.path.join(tmp, "PainleveRod.fmu")
+            with open(path, "wb") as f:
                 f.write(blob.data)
-            os.replace(tmp, path)
-        _EXPERIMENTS[key] = Experiment(path, fmi_type=fmi_type)
+            _EXPERIMENTS[key] = Experiment(path, fmi_type=fmi_type, tmp_dir=tmp_dir)
     return _EXPERIMENTS[key]
 
 
@@ -88,9 +90,9 @@ def case_row(experiment, case, case_id):
     return {**row, **outcome.as_row(), "status": "ok"}
 
 
-def run_batch(spec, ids, blob, fmi_type="ModelExchange"):
+def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
     """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
-    experiment = experiment_for(blob, fmi_type)
+    experiment = experiment_for(blob, fmi_type, tmp_dir)
     return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
 
 
@@ -125,7 +127,13 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
         say(f"resuming {out}: {len(done)} of {spec.total} cases already done, {len(remaining)} to run")
     start = time.monotonic()
     batches = _batches(remaining, max(1, int(batch)))
-    with _progress(spec.total, len(done), progress) as bar:
+    # Connected before the progress bar starts: a scheduler that does not answer is one line, no bar.
+    dask = _connect(scheduler, workers) if len(remaining) and not serial else None
+    # The local cluster's workers extract the FMU in here, removed on every way out, even when
+    # the workers are stopped before they could clean up (Ctrl-C); a scheduler's workers may
+    # be on other machines and outlive the sweep: they clean up themselves (_close_experiments).
+    with tempfile.TemporaryDirectory(prefix="painleve-sweep-") as work, \
+            _progress(spec.total, len(done), progress) as bar:
         if not len(remaining):
             pass
         elif serial:
@@ -134,7 +142,8 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
                 store.append(df)
                 bar.update(len(df))
         else:
-            _run_on_dask(spec, batches, blob, fmi_type, store, bar, scheduler=scheduler, workers=workers, say=say)
+            _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, scheduler=scheduler, say=say,
+                         tmp_dir=None if scheduler else work)
     return SweepResult(total=spec.total, skipped=len(done), ran=len(remaining),
                        seconds=time.monotonic() - start, out=str(out))
 
@@ -142,7 +151,7 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
 def _connect(scheduler, workers):
     from dask.distributed import Client, LocalCluster
     if scheduler:
-        return Client(scheduler, timeout="15s"), None
+        return Client(scheduler, timeout="10s"), None
     with _workers_ignore_ctrl_c():
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
                                silence_logs=logging.ERROR)
@@ -164,16 +173,16 @@ def _workers_ignore_ctrl_c():
         signal.signal(signal.SIGINT, previous)
 
 
-def _run_on_dask(spec, batches, blob, fmi_type, store, bar, *, scheduler, workers, say):
+def _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, *, scheduler, say, tmp_dir=None):
     from dask.distributed import as_completed
-    client, cluster = _connect(scheduler, workers)
+    client, cluster = dask
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
         say(f"dask: {'scheduler ' + scheduler if scheduler else 'local cluster'} with {n_workers} worker(s)")
         blob_future = client.scatter(blob, broadcast=True, hash=False)
 
         def submit(ids):
-            return client.submit(run_batch, spec, ids, blob_future, fmi_type, pure=False)
+            return client.submit(run_batch, spec, ids, blob_future, fmi_type, tmp_dir, pure=False)
         # Keep a few batches per worker in flight: enough to stay busy, few enough to stop quickly.
         queue = as_completed([submit(ids) for _, ids in zip(range(3 * n_workers), batches)])
         for future in queue:
@@ -188,7 +197,9 @@ def _run_on_dask(spec, batches, blob, fmi_type, store, bar, *, scheduler, worker
         # Interrupted with batches in flight: closing the cluster under them can make a pending
         # tornado callback fail on a closed connection, logged with a traceback that says nothing
         # to the user (what was written is kept; the CLI says how to resume).
-        logging.getLogger("tornado.application").setLevel(logging.CRITICAL)
+        # The same for distributed's own ERROR lines about the connections it is closing.
+        for name in ("tornado.application", "distributed"):
+            logging.getLogger(name).setLevel(logging.CRITICAL)
         raise
     finally:
         try:    # each worker frees its FMU instance and extracted files (workers do not run atexit)

@@ -16,17 +16,23 @@ from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
-from .case import Case
+from .case import RANGES, Case
 
 PARAMS = ("theta0", "phi0", "delta", "epsilon", "v0", "w10", "alpha", "mu")
 DEFAULTS = {f.name: f.default for f in fields(Case)}
-# What each parameter must satisfy before any case runs (the model's ranges, MODEL.md §4).
+# What each parameter must satisfy before any case runs: the FMU's ranges (case.RANGES, docs/model.md).
 LIMITS = {
-    "epsilon": (lambda x: 1e-8 <= x < 1, "eps must be in [1e-8, 1): the contact stiffness is eps^-2"),
-    "delta": (lambda x: x >= 0, "delta must be >= 0 (contact damping)"),
-    "alpha": (lambda x: x > 0, "alpha = m l^2 / I must be > 0 (3 for a uniform rod)"),
-    "mu": (lambda x: x >= 0, "mu must be >= 0 (friction coefficient)"),
+    "epsilon": (lambda x: RANGES["epsilon"][0] <= x <= RANGES["epsilon"][1],
+                "eps must be in [1e-8, 1]: the contact stiffness is eps^-2"),
+    "delta": (lambda x: RANGES["delta"][0] <= x <= RANGES["delta"][1], "delta must be in [0, 1e6] (contact damping)"),
+    "alpha": (lambda x: RANGES["alpha"][0] <= x <= RANGES["alpha"][1],
+              "alpha = m l^2 / I must be in [1e-6, 1e6] (3 for a uniform rod)"),
+    "mu": (lambda x: RANGES["mu"][0] <= x <= RANGES["mu"][1], "mu must be in [0, 1e6] (friction coefficient)"),
 }
+# The most cases one sweep may hold, checked before anything is allocated: every case's id is
+# held in memory (8 bytes) and each row is ~300 bytes on disk; at ~1000 cases/s on two workers
+# ten million cases are about three hours.
+MAX_CASES = 10_000_000
 
 
 class SpecError(ValueError):
@@ -95,6 +101,11 @@ class Axis:
                 raise SpecError(f"{_option(name)} {text}: the count n in lo:hi:n must be >= 1")
         return cls(name, lo=lo, hi=hi, n=n, log=log)
 
+    @property
+    def size(self):
+        """The number of grid values, without making them."""
+        return len(self.values) if self.values else self.n
+
     def grid(self):
         if self.values:
             return np.array(self.values, dtype=float)
@@ -134,15 +145,21 @@ class SweepSpec:
             raise SpecError(f"unknown parameter {sorted(unknown)[0]!r}; the parameters are {', '.join(PARAMS)}")
         random = samples > 0
         axes = tuple(Axis.parse(p, texts.get(p, repr(DEFAULTS[p])), random=random) for p in PARAMS)
-        return cls(axes=axes, samples=int(samples), seed=int(seed))
+        spec = cls(axes=axes, samples=int(samples), seed=int(seed))
+        if spec.total > MAX_CASES:
+            sizes = " x ".join(f"{a.size} {a.name}" for a in axes if a.size > 1)
+            raise SpecError(f"{spec.total:,} cases ({sizes if not random else '--random'}) is more than one sweep "
+                            f"holds ({MAX_CASES:,}): use fewer points, or split it into several sweeps")
+        return spec
 
     @property
     def shape(self):
-        return tuple(len(a.grid()) for a in self.axes)
+        return tuple(a.size for a in self.axes)
 
     @property
     def total(self):
-        return self.samples if self.samples else int(np.prod(self.shape))
+        """The number of cases, as a Python int (no overflow, nothing allocated)."""
+        return self.samples if self.samples else math.prod(self.shape)
 
     def columns(self, ids):
         """{param: array of values} for the cases `ids`."""

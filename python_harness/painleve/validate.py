@@ -2,7 +2,7 @@
 that ships the FMU runs (`painleve validate FMU`).
 
 1. static: fmpy's validation of the archive and modelDescription.xml, and
-   the interface contract of MODEL.md §4 (names, causality, variability, starts);
+   the interface contract of docs/model.md §4 (names, causality, variability, starts);
 2. the default experiment, as any FMI tool would run it, shows an IWC;
 3. Theorem 1 on a fixed set of cases across the parameter space (both Painleve
    wedges of the paper, other rods, every damping regime) and a seeded random
@@ -113,7 +113,8 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
         w_err = np.array([o.w_error / predicted.e for o in outs])
         iwc = all(o.iwc for o in outs)
         checks.append(Check(
-            f"{cid}/below", f"Theorem 2 below w1* = {w1s:.4f} (w10 = 1.5 w1*), {_label(state)}",
+            f"{cid}/below", f"Theorem 2 below w1* = {w1s:.4f} (w10 = 1.5 w1*), {_label(state)}, "
+            f"eps = {', '.join(f'{e:g}' for e in epsilons)}",
             f"IWC {iwc}; (w/v0-e)/e = {', '.join(f'{x:+.1e}' for x in w_err)}",
             f"IWC; |err| <= {tolerance:.0%} at eps={epsilons[-1]:g}; errors fall",
             not acceptance.theorem1_failures(outs),
@@ -122,7 +123,8 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
         ratio = np.array([o.w / eps for o, eps in zip(outs, epsilons)])
         stuck = any(o.iwc for o in outs)
         checks.append(Check(
-            f"{cid}/above", f"Theorem 2 above w1* = {w1s:.4f} (w10 = 0.5 w1*), {_label(state)}",
+            f"{cid}/above", f"Theorem 2 above w1* = {w1s:.4f} (w10 = 0.5 w1*), {_label(state)}, "
+            f"eps = {', '.join(f'{e:g}' for e in epsilons)}",
             f"IWC {stuck}; w/eps = {', '.join(f'{x:.3g}' for x in ratio)}",
             f"lift-off without sticking; 0 < w <= {acceptance.LIFT_OFF_W:g} eps",
             not acceptance.lift_off_failures(outs),
