@@ -47,11 +47,12 @@ def one_line_error(r):
 # ------------------------------------------------------------------ help
 @pytest.mark.parametrize("command, options", [
     ([], ["iwc", "validate", "figures", "sweep"]),
-    (["iwc"], ["--theta0", "--phi0", "--v0", "--delta", "--eps", "--w10", "--alpha", "--mu", "--fmu", "--interface",
-               "--json"]),
+    (["iwc"], ["--theta0", "--phi0", "--v0", "--delta", "--eps", "--w10", "--alpha", "--mu", "--kappa", "--beta",
+               "--fmu", "--interface", "--json"]),
     (["validate"], ["FMU", "--interface", "--sample", "--report", "--json"]),
     (["figures"], ["--fmu", "--out", "--only", "--dpi"]),
-    (["sweep"], ["--theta0", "--phi0", "--delta", "--eps", "--v0", "--w10", "--alpha", "--mu", "--random", "--seed",
+    (["sweep"], ["--theta0", "--phi0", "--delta", "--eps", "--v0", "--w10", "--alpha", "--mu", "--kappa", "--beta",
+                 "--random", "--seed",
                  "--out", "--scheduler", "--workers", "--batch", "--serial", "--fmu", "--no-progress", "lo:hi:n"]),
 ])
 def test_help_explains_every_option(command, options):
@@ -69,6 +70,17 @@ def test_iwc_prints_the_simulated_outcome_beside_the_analytic_one(fmu_path):
     assert analytic == pytest.approx(e, rel=1e-6)
     assert simulated == pytest.approx(e, rel=1e-3)
     assert "Theorem 1" in r.stdout and "IWC" in r.stdout
+
+
+def test_iwc_with_a_nonlinear_compliance_law_compares_with_its_rigid_limit(fmu_path):
+    # --kappa, --beta reach the FMU, and the analytic column is the law's e (painleve.rigid_limit),
+    # which the simulated w approaches as for the linear law, not the linear e.
+    from painleve import rigid_limit
+    r = json.loads(run("iwc", "--fmu", fmu_path, "--theta0", 0.9, "--phi0", 0.5, "--eps", 1e-6, "--kappa", 2,
+                       "--beta", 2, "--json", check_rc=0).stdout)
+    e_law, e_linear = rigid_limit.e(1.0, 0.9, kappa=2.0, beta=2.0), an.e(1.0, 0.9)
+    assert r["predicted"]["e"] == pytest.approx(e_law, rel=1e-10)
+    assert r["simulated"]["w"] == pytest.approx(e_law, rel=1e-3) and abs(r["simulated"]["w"] - e_linear) > 0.01 * e_linear
 
 
 def test_iwc_json_on_both_sides_of_the_separatrix(fmu_path):

@@ -26,17 +26,12 @@ from rod_sim import simulate
 
 @dataclass(frozen=True)
 class LawCase(Case):
-    """A Case with the compliance law's parameters, passed to the FMU as start values."""
-    kappa: float = 0.0
-    beta: float = 0.0
-
-    def start_values(self):
-        return {**super().start_values(), "kappa": self.kappa, "beta": self.beta}
+    """A Case (its kappa and beta the FMU's start values) with the limits computed here."""
 
     @property
     def e_linear(self):
-        """The paper's e (the linear law's)."""
-        return an.predict(self).e
+        """The paper's e (the linear law's closed form)."""
+        return float(an.e(self.delta, self.theta0, alpha=self.alpha, mu=self.mu))
 
     @property
     def e_law(self):
@@ -188,3 +183,14 @@ def test_theorem2_separatrix_moves_by_order_eps_only(experiment):
         assert np.all(np.abs(s) > 0), f"{name}: the law must move the boundary at finite eps: {s}"
         ratio = s[1:] / s[:-1]
         assert np.all((ratio > 0.05) & (ratio < 0.2)), f"{name}: shift {s} must fall like eps"
+
+
+@pytest.mark.parametrize("law", LAWS)
+def test_the_harness_predicts_the_laws_rigid_limit(law):
+    # analytic.predict, which iwc, validate's report and sweeps print beside the FMU's outcome,
+    # takes e and phi from the rigid limit for a nonlinear law (the linear law's closed form otherwise).
+    case = LawCase(theta0=0.9, phi0=0.5, delta=1.0, epsilon=1e-5, **LAWS[law])
+    predicted = an.predict(case)
+    assert predicted.e == pytest.approx(case.e_law, rel=1e-12) and predicted.phi == pytest.approx(case.phi_law, rel=1e-12)
+    assert abs(predicted.e - case.e_linear) > 0.01 * case.e_linear
+    assert an.predict(Case(theta0=0.9, phi0=0.5, delta=1.0, epsilon=1e-5)).e == pytest.approx(case.e_linear, rel=1e-12)

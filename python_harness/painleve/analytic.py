@@ -199,12 +199,13 @@ def e_zero(theta0, *, alpha=ALPHA, mu=MU):
                         * al * sn * cs / (1 + al * sn ** 2)))  # eq eDeltaZero
 
 
-def phi_after_iwc(theta0, phi0, v0, delta, *, alpha=ALPHA, mu=MU):
-    """Angular velocity phi when the rod is back at y = 0 after IWC (Theorem 1, eq expr)."""
+def phi_after_iwc(theta0, phi0, v0, delta, *, alpha=ALPHA, mu=MU, e=None):
+    """Angular velocity phi when the rod is back at y = 0 after IWC (Theorem 1, eq expr);
+    e: the lift-off velocity over v0 if not the linear law's (rigid_limit.e for a nonlinear one)."""
     th, al, m = check_hypotheses("Theorem 1", theta0, alpha, mu, v0=v0, delta=delta)
     pp, qp, cp = p_of(th, 1.0, al, m), q_of(th, 1.0, al, m), c_of(th, 1.0, al, m)
     sphi = -al * np.cos(th) / (1 + al * np.sin(th) ** 2)
-    ee = floats(e_closed_form(delta, th, alpha=al, mu=m))
+    ee = floats(e_closed_form(delta, th, alpha=al, mu=m) if e is None else e)
     return as_result(floats(phi0) + (-cp / qp + sphi / s_w_of(th, al) * (ee + pp / qp)) * floats(v0))  # eq expr
 
 
@@ -273,15 +274,28 @@ def _or_nan(formula):
         return np.nan
 
 
+def _e_of(case, rod):
+    """e of the case's compliance law: the paper's closed form for the linear law, the
+    rigid limit computed numerically for a nonlinear one (rigid_limit, issue #16)."""
+    if not (case.kappa or case.beta):
+        return e(case.delta, case.theta0, **rod)
+    from . import rigid_limit       # it builds on this module
+    return float(rigid_limit.e(case.delta, case.theta0, kappa=case.kappa, beta=case.beta, v0=case.v0, **rod))
+
+
 @functools.lru_cache(maxsize=4096)
 def predict(case):
     """The paper's predictions for a Case, NaN where a result's hypotheses fail (see
-    check_case); computed once per case, since a sweep asks for each several times."""
+    check_case); computed once per case, since a sweep asks for each several times.
+    For a nonlinear compliance law (case.kappa, case.beta) e and phi are the rigid
+    limit's; Theorem 2's w1* is the linear law's (the nonlinear terms are O(eps) in
+    the initial layer, docs/nonlinear_compliance.md)."""
     rod = dict(alpha=case.alpha, mu=case.mu)
     theorem = theorem_of(case)
     w1s = np.nan if theorem == 1 else _or_nan(lambda: w1_star(case.theta0, case.phi0, case.delta, **rod))
-    return Prediction(theorem=theorem, e=_or_nan(lambda: e(case.delta, case.theta0, **rod)),
-                      phi=_or_nan(lambda: phi_after_iwc(case.theta0, case.phi0, case.v0, case.delta, **rod)),
+    ee = _or_nan(lambda: _e_of(case, rod))
+    return Prediction(theorem=theorem, e=ee,
+                      phi=_or_nan(lambda: phi_after_iwc(case.theta0, case.phi0, case.v0, case.delta, e=ee, **rod)),
                       lambda_plus=_or_nan(lambda: lambda_pm(case.theta0, case.delta, **rod)[0]),
                       time_scale=_or_nan(lambda: iwc_time_scale(case.epsilon, case.theta0, case.delta, **rod)),
                       w1_star=w1s, iwc=None if theorem == 2 and np.isnan(w1s) else theorem == 1 or case.w10 < w1s)

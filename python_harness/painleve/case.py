@@ -8,7 +8,8 @@ from .analytic import check_case, predict
 # The parameters' ranges, the FMU's own (fmu_src/config.h, the min/max of modelDescription.xml;
 # tests/test_cli.py checks they agree): the CLI and sweeps refuse a value outside them before
 # the FMU would. {name: (min, max)}, both ends included.
-RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon": (1e-8, 1.0)}
+RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon": (1e-8, 1.0),
+          "kappa": (0.0, 1e6), "beta": (0.0, 1e6)}
 
 
 @dataclass(frozen=True)
@@ -24,6 +25,8 @@ class Case:
     w10: float = 0.0
     alpha: float = 3.0
     mu: float = 3.0
+    kappa: float = 0.0    # the compliance law's stiffening (0: the paper's linear law, docs/nonlinear_compliance.md)
+    beta: float = 0.0     # its damping growth with penetration
 
     def check(self):
         """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
@@ -31,7 +34,8 @@ class Case:
 
     def start_values(self):
         """The FMU's start values for this case (fmpy's start_values)."""
-        return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon,
+        law = {k: v for k, v in (("kappa", self.kappa), ("beta", self.beta)) if v}   # the FMU's default: linear
+        return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon, **law,
                     x=0.0, v=self.v0, y=0.0, w=self.epsilon * self.w10, theta=self.theta0, phi=self.phi0)
 
 

@@ -223,6 +223,13 @@ def _case_options(parser, help_suffix=""):
     g.add_argument("--mu", type=in_range("mu", "mu"), default=DEFAULTS["mu"],
                    help="friction coefficient, in [0, 1e6]; a Painleve wedge needs mu > 2 sqrt(1+alpha)/alpha "
                         "(default %(default)s)")
+    g.add_argument("--kappa", type=in_range("kappa", "kappa"), default=DEFAULTS["kappa"],
+                   help="compliance law: the spring's stiffening, scaled force d + kappa d^2 at scaled penetration "
+                        "d = -y/eps, in [0, 1e6]; e is then the rigid limit computed numerically "
+                        "(docs/nonlinear_compliance.md; default %(default)s: the paper's linear law)")
+    g.add_argument("--beta", type=in_range("beta", "beta"), default=DEFAULTS["beta"],
+                   help="compliance law: the damping's growth with penetration, delta (1 + beta d), in [0, 1e6] "
+                        "(default %(default)s)")
 
 
 def _fmu_option(parser):
@@ -316,7 +323,8 @@ def _add_sweep(sub):
                                "the outcome,\nthe predictions and the errors (w_error = w/v0 - e).")
     g = sw.add_argument_group("parameters (see below)")
     meaning = dict(theta0="rod angle", phi0="angular velocity", delta="contact damping", v0="horizontal velocity",
-                   w10="initial w / eps", alpha="m l^2 / I", mu="friction coefficient")
+                   w10="initial w / eps", alpha="m l^2 / I", mu="friction coefficient",
+                   kappa="compliance law: spring stiffening", beta="compliance law: damping growth")
     for name, what in meaning.items():
         g.add_argument(f"--{name}", metavar="SPEC", help=f"{name} values ({what}; default {DEFAULTS[name]:g})")
     g.add_argument("--eps", "--epsilon", dest="epsilon", metavar="SPEC",

@@ -18,7 +18,7 @@ import numpy as np
 
 from .case import RANGES, Case
 
-PARAMS = ("theta0", "phi0", "delta", "epsilon", "v0", "w10", "alpha", "mu")
+PARAMS = ("theta0", "phi0", "delta", "epsilon", "v0", "w10", "alpha", "mu", "kappa", "beta")
 DEFAULTS = {f.name: f.default for f in fields(Case)}
 # What each parameter must satisfy before any case runs: the FMU's ranges (case.RANGES, docs/model.md).
 LIMITS = {
@@ -28,6 +28,10 @@ LIMITS = {
     "alpha": (lambda x: RANGES["alpha"][0] <= x <= RANGES["alpha"][1],
               "alpha = m l^2 / I must be in [1e-6, 1e6] (3 for a uniform rod)"),
     "mu": (lambda x: RANGES["mu"][0] <= x <= RANGES["mu"][1], "mu must be in [0, 1e6] (friction coefficient)"),
+    "kappa": (lambda x: RANGES["kappa"][0] <= x <= RANGES["kappa"][1],
+              "kappa must be in [0, 1e6] (the compliance law's stiffening; < 0 would soften it)"),
+    "beta": (lambda x: RANGES["beta"][0] <= x <= RANGES["beta"][1],
+             "beta must be in [0, 1e6] (the damping's growth with penetration)"),
 }
 # The most cases one sweep may hold, checked before anything is allocated: every case's id is
 # held in memory (8 bytes) and each row is ~300 bytes on disk; at ~1000 cases/s on two workers
