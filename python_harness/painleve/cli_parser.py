@@ -9,7 +9,7 @@ import textwrap
 import zipfile
 
 DEFAULT_FMU = "build/PainleveRod.fmu"
-DEFAULTS = dict(theta0=1.0, phi0=0.5, v0=1.0, delta=1.0, epsilon=1e-3, w10=0.0, alpha=3.0, mu=3.0)
+DEFAULTS = dict(theta0=1.0, phi0=0.5, v0=1.0, delta=1.0, epsilon=1e-3, w10=0.0, alpha=3.0, mu=3.0, kappa=0.0, beta=0.0)
 
 
 class UsageError(Exception):
