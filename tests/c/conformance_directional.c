@@ -124,16 +124,6 @@ static double central_difference(Inst *in, int unknown, int known, double nomina
     return (plus - minus) / (2 * h);
 }
 
-/* The mode's unknowns and knowns, as ScalarVariable indices. */
-static void mode_sets(MdMode mode, int *unknowns, int *nu, int *knowns, int *nk)
-{
-    *nu = *nk = 0;
-    for (int k = 1; k <= MD_N_VARIABLES && k <= MAX_VARS; ++k) {
-        if (md_unknown_of_mode(mode, k)) unknowns[(*nu)++] = k;
-        if (md_known_of_mode(mode, k)) knowns[(*nk)++] = k;
-    }
-}
-
 /* Every defined pair in `state`: status, structural zeros, differences, linearity. */
 static void check_defined_pairs(State state)
 {
@@ -141,7 +131,7 @@ static void check_defined_pairs(State state)
     if (!reach(&in, state)) return;
     const MdMode mode = mode_of(state);
     int unknowns[MAX_VARS], knowns[MAX_VARS], nu, nk;
-    mode_sets(mode, unknowns, &nu, knowns, &nk);
+    md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
     CHECK(nu > 0 && nk > 0, "%s: modelDescription.xml defines %d unknowns and %d knowns", STATE_NAME[state], nu, nk);
     static double J[MAX_VARS][MAX_VARS];
     double nominal[ROD_NX] = { 1, 1, 1, 1, 1, 1 };
@@ -228,7 +218,7 @@ void test_directional_derivatives(void)
         const MdMode mode = mode_of(state);
         check_defined_pairs(state);
         int unknowns[MAX_VARS], knowns[MAX_VARS], nu, nk;
-        mode_sets(mode, unknowns, &nu, knowns, &nk);
+        md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
         if (nu == 0 || nk == 0) continue;
         /* Each variable as the unknown by a known of the mode, and as the known for an unknown of it. */
         for (int k = 1; k <= MD_N_VARIABLES; ++k) {

@@ -111,22 +111,13 @@ static double central_difference(Inst3 *in, int unknown, int known, double nomin
     return (plus - minus) / (2 * h);
 }
 
-static void mode_sets(MdMode mode, int *unknowns, int *nu, int *knowns, int *nk)
-{
-    *nu = *nk = 0;
-    for (int k = 1; k <= MD_N_VARIABLES && k <= MAX_VARS; ++k) {
-        if (md_unknown_of_mode(mode, k)) unknowns[(*nu)++] = k;
-        if (md_known_of_mode(mode, k)) knowns[(*nk)++] = k;
-    }
-}
-
 static void check_defined_pairs(State3 state)
 {
     Inst3 in;
     if (!reach(&in, state)) return;
     const MdMode mode = mode_of(state);
     int unknowns[MAX_VARS], knowns[MAX_VARS], nu, nk;
-    mode_sets(mode, unknowns, &nu, knowns, &nk);
+    md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
     CHECK(nu > 0 && nk > 0, "%s: modelDescription.xml defines %d unknowns and %d knowns", STATE3_NAME[state], nu, nk);
     static double J[MAX_VARS][MAX_VARS];
     double nominal[ROD_NX] = { 1, 1, 1, 1, 1, 1 };
@@ -232,7 +223,7 @@ void test3_derivatives(void)
         const MdMode mode = mode_of(state);
         check_defined_pairs(state);
         int unknowns[MAX_VARS], knowns[MAX_VARS], nu, nk;
-        mode_sets(mode, unknowns, &nu, knowns, &nk);
+        md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
         if (nu == 0 || nk == 0) continue;
         /* Each variable (event indicators and time included) as the unknown by a
          * known of the mode, and as the known for an unknown of it. */

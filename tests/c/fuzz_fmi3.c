@@ -28,6 +28,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define FUZZ_NAME "fuzz_fmi3"
+#include "fuzz_bytes.h"
 #include "fmi3_harness.h"
 
 static Fmi3Api api3;
@@ -49,50 +51,13 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     return 0;
 }
 
-#define INVARIANT(cond, ...)                                               \
-    do {                                                                   \
-        if (!(cond)) {                                                     \
-            fprintf(stderr, "fuzz_fmi3: invariant broken: " __VA_ARGS__); \
-            fprintf(stderr, "\n");                                         \
-            abort();                                                       \
-        }                                                                  \
-    } while (0)
-
-typedef struct {
-    const uint8_t *p;
-    size_t n;
-} Bytes;
-
 static Bytes in;
-
-static uint8_t take(void)
-{
-    if (!in.n) return 0;
-    --in.n;
-    return *in.p++;
-}
-
-/* An edge value, a modest decimal, or 8 raw bytes (any bit pattern). */
-static double take_double(void)
-{
-    static const double EDGES[] = { 0.0, -0.0, 1.0, -1.0, NAN, -NAN, INFINITY, -INFINITY, DBL_MIN, DBL_MAX,
-                                    -DBL_MAX, 4.9406564584124654e-324, 1e-8, 1e-6, 1e-3, 0.05, 0.1, 0.5, 3.0,
-                                    1e6, 1e6 * (1 + 1e-15), -1e6, 1.0000000000000002, 1e-300, 1e300 };
-    const uint8_t sel = take();
-    if (sel < 64) return EDGES[sel % (sizeof EDGES / sizeof EDGES[0])];
-    if (sel < 192) return (double)(int8_t)take() / 16.0 * pow(10.0, (double)(sel % 9) - 4);
-    uint64_t bits = 0;
-    for (int k = 0; k < 8; ++k) bits = bits << 8 | take();
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
-}
 
 /* Mostly the model description's value references (event indicators and time too), sometimes far out. */
 static fmi3ValueReference take_vr(void)
 {
     static const fmi3ValueReference FAR[] = { VR_COUNT + ROD_NZ + 1, 255, 1000, 0x80000000u, UINT_MAX };
-    const uint8_t sel = take();
+    const uint8_t sel = take(&in);
     return sel < 224 ? sel % (VR_COUNT + ROD_NZ + 3) : FAR[sel % (sizeof FAR / sizeof FAR[0])];
 }
 
@@ -103,7 +68,7 @@ static fmi3ValueReference take_vr(void)
 static void take_counts(size_t *nvr, size_t *nvalues, bool *null_arrays)
 {
     static const size_t HUGE_N[] = { SIZE_MAX, SIZE_MAX / 2 + 1, (size_t)1 << 40, CAP + 1 };
-    const uint8_t sel = take(), other = take();
+    const uint8_t sel = take(&in), other = take(&in);
     *null_arrays = sel >= 240;
     *nvr = sel < 240 ? sel % (CAP + 1) : HUGE_N[sel % (sizeof HUGE_N / sizeof HUGE_N[0])];
     *nvalues = other < 224 || *null_arrays ? *nvr : other % (CAP + 1);
@@ -164,7 +129,7 @@ enum {
 static void op_instantiate(Slot *s, bool cs)
 {
     static const char *const NAMES[] = { "rod", "%s%n%d", "", NULL };
-    const uint8_t name = take(), token = take(), flags = take();
+    const uint8_t name = take(&in), token = take(&in), flags = take(&in);
     const char *t = token < 224 ? harness_guid : token < 240 ? "{b1036d9e-0000}" : NULL;
     fmi3LogMessageCallback logger = flags & 4 ? NULL : harness3_logger;
     free_slot(s);
@@ -197,8 +162,8 @@ static void run_op(int op, Slot *s)
         if (CALL(s, false, f->Reset(s->c)) == fmi3OK) s->in_error = false, s->time = 0;
         break;
     case OP_ENTER_INIT: {
-        const uint8_t flags = take();
-        const double tol = take_double(), start = take_double(), stop = take_double();
+        const uint8_t flags = take(&in);
+        const double tol = take_double(&in), start = take_double(&in), stop = take_double(&in);
         if (CALL(s, true, f->EnterInitializationMode(s->c, flags & 1, tol, start, flags & 2, stop)) == fmi3OK)
             s->time = start;
         break;
@@ -206,7 +171,7 @@ static void run_op(int op, Slot *s)
     case OP_EXIT_INIT: CALL(s, true, f->ExitInitializationMode(s->c)); break;
     case OP_SET_FLOAT64:
         take_counts(&nvr, &nvalues, &null_arrays);
-        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), v[k] = take_double();
+        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), v[k] = take_double(&in);
         for (size_t k = 0; getenv("FUZZ_TRACE") && !null_arrays && k < nvr && k < CAP; ++k)
             fprintf(stderr, "  set %u = %.17g\n", vr[k], v[k]);
         CALL(s, true, f->SetFloat64(s->c, null_arrays ? NULL : vr, nvr, null_arrays ? NULL : v, nvalues));
@@ -222,7 +187,7 @@ static void run_op(int op, Slot *s)
         fmi3Boolean bb[CAP];
         fmi3String str[CAP];
         fmi3UInt64 u64[CAP];
-        const uint8_t type = take();
+        const uint8_t type = take(&in);
         take_counts(&nvr, &nvalues, &null_arrays);
         for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr();
         const fmi3ValueReference *p = null_arrays ? NULL : vr;
@@ -246,9 +211,9 @@ static void run_op(int op, Slot *s)
         fmi3Int32 i32[CAP];
         fmi3Boolean bb[CAP];
         const fmi3String str[CAP] = { "", "x", "%s", NULL, "", "", "", "" };
-        const uint8_t type = take();
+        const uint8_t type = take(&in);
         take_counts(&nvr, &nvalues, &null_arrays);
-        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), i32[k] = (fmi3Int32)(int8_t)take(), bb[k] = take() & 1;
+        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), i32[k] = (fmi3Int32)(int8_t)take(&in), bb[k] = take(&in) & 1;
         const fmi3ValueReference *p = null_arrays ? NULL : vr;
         switch (type % 3) {
         case 0: CALL(s, true, f->SetInt32(s->c, p, nvr, null_arrays ? NULL : i32, nvalues)); break;
@@ -258,7 +223,7 @@ static void run_op(int op, Slot *s)
         break;
     }
     case OP_UPDATE: {
-        const uint8_t nulls = take();
+        const uint8_t nulls = take(&in);
         double next = NAN;
         st = CALL(s, true, f->UpdateDiscreteStates(s->c, nulls == 1 ? NULL : &b1, &b2, &b3, &b4, &b5,
                                                      nulls == 2 ? NULL : &next));
@@ -269,18 +234,18 @@ static void run_op(int op, Slot *s)
     case OP_ENTER_STEP: CALL(s, true, f->EnterStepMode(s->c)); break;
     case OP_ENTER_EVENT: CALL(s, true, f->EnterEventMode(s->c)); break;
     case OP_SET_TIME: {
-        const double t = take() & 1 ? take_double() : s->time + 1e-4 * take();
+        const double t = take(&in) & 1 ? take_double(&in) : s->time + 1e-4 * take(&in);
         if (CALL(s, true, f->SetTime(s->c, t)) == fmi3OK) s->time = t;
         break;
     }
     case OP_SET_STATES: {
-        const size_t n = take() < 200 ? ROD_NX : take() % (ROD_NX + 2);
-        for (size_t k = 0; k < ROD_NX + 2; ++k) v[k] = take_double();
-        CALL(s, true, f->SetContinuousStates(s->c, take() == 255 ? NULL : v, n));
+        const size_t n = take(&in) < 200 ? ROD_NX : take(&in) % (ROD_NX + 2);
+        for (size_t k = 0; k < ROD_NX + 2; ++k) v[k] = take_double(&in);
+        CALL(s, true, f->SetContinuousStates(s->c, take(&in) == 255 ? NULL : v, n));
         break;
     }
     case OP_GET_ARRAYS: {
-        const uint8_t which = take(), sel = take();
+        const uint8_t which = take(&in), sel = take(&in);
         const size_t n = (which % 4 == 1 ? ROD_NZ : ROD_NX) + (sel < 200 ? 0 : (size_t)(sel % 3) - 1);
         fmi3Float64 *out = sel == 255 ? NULL : v;
         switch (which % 4) {
@@ -293,14 +258,14 @@ static void run_op(int op, Slot *s)
         break;
     }
     case OP_COMPLETED: {
-        const uint8_t nulls = take();
+        const uint8_t nulls = take(&in);
         CALL(s, true, f->CompletedIntegratorStep(s->c, nulls & 1, nulls == 2 ? NULL : &b1, nulls == 4 ? NULL : &b2));
         break;
     }
     case OP_DO_STEP: {
-        const uint8_t sel = take();
-        const double t = sel < 224 ? s->time : take_double();
-        double h = sel % 2 ? take_double() : 1e-3 * (1 + take());
+        const uint8_t sel = take(&in);
+        const double t = sel < 224 ? s->time : take_double(&in);
+        double h = sel % 2 ? take_double(&in) : 1e-3 * (1 + take(&in));
         /* Bounded integration per input (a step of hundreds of time units is a long
          * run of bounces, not a finding): a legal step past the bound is cut to 1e-3;
          * bad ones (NaN, infinite, <= 0) go through, for the FMU to refuse. */
@@ -323,7 +288,7 @@ static void run_op(int op, Slot *s)
     }
     case OP_FMU_STATE: {
         fmi3FMUState state = NULL;
-        const uint8_t sel = take();
+        const uint8_t sel = take(&in);
         st = CALL(s, false, f->GetFMUState(s->c, sel == 1 ? NULL : &state));
         if (st == fmi3OK && state) {
             const double time = s->time;
@@ -337,9 +302,9 @@ static void run_op(int op, Slot *s)
         fmi3Byte bytes[512];
         fmi3FMUState state = NULL;
         size_t size = 0;
-        const uint8_t len = take();
+        const uint8_t len = take(&in);
         const size_t n = len < 200 ? len : (size_t)len * 2;
-        for (size_t k = 0; k < n && k < sizeof bytes; ++k) bytes[k] = (fmi3Byte)take();
+        for (size_t k = 0; k < n && k < sizeof bytes; ++k) bytes[k] = (fmi3Byte)take(&in);
         fmi3Byte *copy = malloc(n ? n : 1); /* exactly n bytes: a read past them is caught */
         if (!copy) break;
         memcpy(copy, bytes, n < sizeof bytes ? n : sizeof bytes);
@@ -354,13 +319,13 @@ static void run_op(int op, Slot *s)
         break;
     }
     case OP_DERIVATIVES: {
-        const uint8_t sel = take();
+        const uint8_t sel = take(&in);
         size_t nu, nk, nseed, nsens;
         take_counts(&nu, &nseed, &null_arrays);
-        nk = take() % (CAP + 1);
-        nsens = sel & 2 ? (sel & 1 ? nk : nu) : take() % (CAP + 1);
+        nk = take(&in) % (CAP + 1);
+        nsens = sel & 2 ? (sel & 1 ? nk : nu) : take(&in) % (CAP + 1);
         if (!(sel & 2)) nseed = sel & 1 ? nu : nk;
-        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), vr2[k] = take_vr(), w[k] = take_double();
+        for (size_t k = 0; k < CAP; ++k) vr[k] = take_vr(), vr2[k] = take_vr(), w[k] = take_double(&in);
         if (nseed > CAP || nsens > CAP) null_arrays = true;
         const fmi3ValueReference *u = null_arrays ? NULL : vr, *kn = null_arrays ? NULL : vr2;
         st = sel & 1 ? CALL(s, false, f->GetAdjointDerivative(s->c, u, nu, kn, nk, null_arrays ? NULL : w, nseed,
@@ -373,22 +338,22 @@ static void run_op(int op, Slot *s)
     case OP_TERMINATE: CALL(s, true, f->Terminate(s->c)); break;
     case OP_LOGGING: {
         const fmi3String cats[] = { "logEvents", "logAll", "logNothing", NULL, "%s%n" };
-        const uint8_t on = take(), n = take() % 4, first = take();
+        const uint8_t on = take(&in), n = take(&in) % 4, first = take(&in);
         fmi3String chosen[3];
         for (size_t k = 0; k < 3; ++k) chosen[k] = cats[(first + k) % 5];
-        CALL(s, false, f->SetDebugLogging(s->c, on & 1, n, take() == 255 ? NULL : chosen));
+        CALL(s, false, f->SetDebugLogging(s->c, on & 1, n, take(&in) == 255 ? NULL : chosen));
         break;
     }
     default: { /* what this FMU does not have */
         size_t n;
         fmi3Clock clocks[CAP];
         vr[0] = take_vr();
-        switch (take() % 5) {
+        switch (take(&in) % 5) {
         case 0: CALL(s, true, f->GetNumberOfVariableDependencies(s->c, vr[0], &n)); break;
         case 1: CALL(s, true, f->EnterConfigurationMode(s->c)); break;
         case 2: CALL(s, true, f->GetClock(s->c, vr, 1, clocks)); break;
         case 3: CALL(s, true, f->EvaluateDiscreteStates(s->c)); break;
-        default: CALL(s, false, f->GetNumberOfContinuousStates(s->c, take() == 255 ? NULL : &n));
+        default: CALL(s, false, f->GetNumberOfContinuousStates(s->c, take(&in) == 255 ? NULL : &n));
         }
     }
     }
@@ -400,7 +365,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in = (Bytes){ data, size };
     span_left = 0.2; /* twice the default experiment */
     for (int calls = 0; in.n > 0 && calls < 256; ++calls) {
-        const uint8_t op = take();
+        const uint8_t op = take(&in);
         if (getenv("FUZZ_TRACE")) fprintf(stderr, "op %d on instance %d\n", op % N_OPS, op / N_OPS % 3);
         run_op(op % N_OPS, &slots[op / N_OPS % 3]);
     }

@@ -48,3 +48,12 @@ bool md_depends(const MdUnknown *u, int index)
         if (u->deps[k] == index) return true;
     return false;
 }
+
+void md_mode_sets(MdMode mode, int max, int *unknowns, int *nu, int *knowns, int *nk)
+{
+    *nu = *nk = 0;
+    for (int k = 1; k <= MD_N_VARIABLES && k <= max; ++k) {
+        if (md_unknown_of_mode(mode, k)) unknowns[(*nu)++] = k;
+        if (md_known_of_mode(mode, k)) knowns[(*nk)++] = k;
+    }
+}

@@ -61,6 +61,9 @@ const MdUnknown *md_unknown_of_mode(MdMode mode, int index);
  * Continuous-Time Mode and at communication points; inputs and variables
  * with initial = "exact" in Initialization Mode. */
 bool md_known_of_mode(MdMode mode, int index);
+
+/* The unknowns and knowns of `mode` (ScalarVariable indices, at most `max` of each). */
+void md_mode_sets(MdMode mode, int max, int *unknowns, int *nu, int *knowns, int *nk);
 /* Whether `u` declares a dependency on known `index`. */
 bool md_depends(const MdUnknown *u, int index);
 
