@@ -130,7 +130,7 @@ case "${1:-}" in
           "$VENV/bin/painleve" validate build/PainleveRod.fmu --report out/validation.md || rc=$?
           "$VENV/bin/painleve" validate build/fmi3/PainleveRod.fmu --report out/validation-fmi3.md || rc=$?
           "$VENV/bin/painleve" figures --out out/figures || rc=$?
-          printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png; the numbers in figures.json, a summary in figures.md)\n' \
+          printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png, fig_eLaw.png; the numbers in figures.json, a summary in figures.md)\n' \
               "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/"
           exit $rc ;;
     test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;

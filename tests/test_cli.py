@@ -49,7 +49,7 @@ def one_line_error(r):
     ([], ["iwc", "validate", "figures", "sweep"]),
     (["iwc"], ["--theta0", "--phi0", "--v0", "--delta", "--eps", "--w10", "--alpha", "--mu", "--kappa", "--beta",
                "--fmu", "--interface", "--json"]),
-    (["validate"], ["FMU", "--interface", "--sample", "--report", "--json"]),
+    (["validate"], ["FMU", "--interface", "--sample", "--kappa", "--beta", "--report", "--json"]),
     (["figures"], ["--fmu", "--out", "--only", "--dpi"]),
     (["sweep"], ["--theta0", "--phi0", "--delta", "--eps", "--v0", "--w10", "--alpha", "--mu", "--kappa", "--beta",
                  "--random", "--seed",
@@ -189,7 +189,7 @@ def figures(fmu_path, tmp_path_factory):
 def test_figures_are_written_as_pngs(figures):
     import matplotlib.image
     out, printed = figures
-    for name in ("fig_GB.png", "fig_eDelta0.png", "fig_video.png"):
+    for name in ("fig_GB.png", "fig_eDelta0.png", "fig_video.png", "fig_eLaw.png"):
         assert str(out / name) in printed
         image = matplotlib.image.imread(out / name)
         assert image.shape[0] > 300 and image.shape[1] > 500 and image.std() > 0.05

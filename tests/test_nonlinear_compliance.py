@@ -194,3 +194,33 @@ def test_the_harness_predicts_the_laws_rigid_limit(law):
     assert predicted.e == pytest.approx(case.e_law, rel=1e-12) and predicted.phi == pytest.approx(case.phi_law, rel=1e-12)
     assert abs(predicted.e - case.e_linear) > 0.01 * case.e_linear
     assert an.predict(Case(theta0=0.9, phi0=0.5, delta=1.0, epsilon=1e-5)).e == pytest.approx(case.e_linear, rel=1e-12)
+
+
+def test_painleve_validate_checks_the_theorems_with_a_nonlinear_law(fmu_path):
+    # Every theorem case with the law, e from the rigid limit (computed here again), all passing.
+    from painleve.validate import validate
+    law = dict(kappa=2.0, beta=1.0)
+    checks = validate(fmu_path, interfaces=["ME"], sample=2, law=law)
+    assert all(c.passed for c in checks), [c.measured for c in checks if not c.passed]
+    theorem1 = [c for c in checks if c.id.startswith("theorem1/")]
+    assert theorem1 and all("kappa=2 beta=1" in c.what for c in theorem1)
+    for c in theorem1:
+        case = c.numbers["case"]
+        e = rl.e(case["delta"], case["theta0"], v0=case["v0"], alpha=case["alpha"], mu=case["mu"], **law)
+        assert c.numbers["e"] == pytest.approx(float(e), rel=1e-10)
+
+
+def test_the_figure_of_e_against_the_law_puts_the_fmu_on_the_rigid_limit(fmu_path):
+    # painleve figures' eLaw: w/v0 of the FMU at eps = 1e-6 on the rigid limit's curve, which leaves
+    # the linear e as kappa (up) or beta (down) grows.
+    from painleve.figures import elaw_data
+    with Experiment(fmu_path) as experiment:
+        d = elaw_data(experiment)
+    for q in d["points"]:
+        law = {q["parameter"]: q["value"]}
+        e = float(rl.e(q["delta"], d["params"]["theta0"], alpha=3.0, mu=3.0, **law))
+        assert q["e_analytic"] == pytest.approx(e, rel=1e-10) and abs(q["rel_error"]) < 1e-3, q
+        linear = float(an.e(q["delta"], d["params"]["theta0"], alpha=3.0, mu=3.0))
+        if q["value"] >= 3:
+            grows = q["parameter"] == "kappa"
+            assert (q["e_simulated"] > 1.05 * linear) if grows else (q["e_simulated"] < 0.95 * linear), q

@@ -91,6 +91,6 @@ def test_the_painleve_commands_run_as_written_and_do_what_their_comments_say(tmp
     assert "all" in validation and "checks passed" in validation
     assert (tmp_path / "out" / "validation.md").exists()
     assert {p.name for p in (tmp_path / "out" / "figures").glob("*.png")} == {"fig_GB.png", "fig_eDelta0.png",
-                                                                               "fig_video.png"}
+                                                                               "fig_video.png", "fig_eLaw.png"}
     df = pd.read_parquet(tmp_path / "out" / "sweep.parquet")
     assert len(df) == 50 * 2 * 4 * 3 and df["id"].is_unique

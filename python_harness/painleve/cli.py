@@ -137,7 +137,7 @@ def cmd_validate(args):
         output_path(args.report, "painleve validate: --report")
     interfaces = None if args.interface == "all" else [args.interface]
     start = time.monotonic()
-    checks = validate(fmu, interfaces=interfaces, sample=args.sample)
+    checks = validate(fmu, interfaces=interfaces, sample=args.sample, law=dict(kappa=args.kappa, beta=args.beta))
     seconds = time.monotonic() - start
     digest = FmuBlob.read(fmu).digest
     if args.report:

@@ -289,6 +289,11 @@ def _add_validate(sub):
     _interface_option(val, all_choice=True)
     val.add_argument("--sample", type=count, default=24, metavar="N",
                      help="Theorem 1 cases drawn at random (fixed seed) beside the fixed ones (default 24)")
+    val.add_argument("--kappa", type=in_range("kappa", "--kappa"), default=0.0,
+                     help="every case with this compliance law's stiffening (its e: the rigid limit, "
+                          "docs/nonlinear_compliance.md; default 0, the paper's linear law)")
+    val.add_argument("--beta", type=in_range("beta", "--beta"), default=0.0,
+                     help="every case with this damping growth with penetration (default 0)")
     val.add_argument("--report", metavar="PATH", help="also write the report: Markdown (.md) or JSON (.json)")
     val.add_argument("--json", action="store_true", help="print the checks as JSON instead of the table")
 
@@ -301,7 +306,7 @@ def _add_figures(sub):
                                      "and figures.md (how far the points lie from the curves).")
     _fmu_option(fig)
     fig.add_argument("--out", default="out/figures", metavar="DIR", help="where to write (default %(default)s)")
-    fig.add_argument("--only", metavar="NAMES", help="a comma-separated subset of GB, eDelta0, video")
+    fig.add_argument("--only", metavar="NAMES", help="a comma-separated subset of GB, eDelta0, video, eLaw")
     fig.add_argument("--dpi", type=dpi_value, default=150, help="PNG resolution, 10 to 1200 (default %(default)s)")
 
 

@@ -22,7 +22,7 @@ from .experiment import Experiment
 from .outcome import outcome_of_trajectory
 from .report import to_json
 
-FIGURES = ("GB", "eDelta0", "video")
+FIGURES = ("GB", "eDelta0", "video", "eLaw")
 
 
 # ------------------------------------------------------------------ fig:GB
@@ -163,6 +163,27 @@ def video_data(experiment, p=VIDEO):
     return out
 
 
+# ------------------------------------------------------------------ eLaw (issue #16)
+# e(delta, theta0) against the compliance law's nonlinearity: the rigid limit (rigid_limit)
+# beside the FMU's w/v0 at small eps, each parameter alone, for three dampings.
+LAW = dict(alpha=3.0, mu=3.0, theta0=0.9, phi0=0.5, v0=1.0)
+LAW_DELTAS = (0.5, 1.0, 2.0)
+LAW_VALUES = (0.0, 1.0, 3.0, 10.0, 20.0)
+LAW_EPSILON = 1e-6
+
+
+def elaw_data(experiment):
+    points = []
+    for parameter in ("kappa", "beta"):
+        for delta in LAW_DELTAS:
+            for value in LAW_VALUES:
+                case = Case(delta=delta, epsilon=LAW_EPSILON, **LAW, **{parameter: value})
+                o, e = experiment.run(case), an.predict(case).e
+                points.append(dict(parameter=parameter, value=value, delta=delta, e_simulated=o.w / case.v0,
+                                   e_analytic=e, rel_error=(o.w / case.v0 - e) / e))
+    return dict(params=dict(LAW, epsilon=LAW_EPSILON), points=points)
+
+
 # ------------------------------------------------------------------ all of them
 def make_figures(fmu_path, out_dir, *, only=None, dpi=150):
     """Simulates, plots and writes fig_*.png, figures.json and figures.md; returns the paths written."""
@@ -182,6 +203,9 @@ def make_figures(fmu_path, out_dir, *, only=None, dpi=150):
             numbers["video"] = video_data(experiment)
             written.append(plots.plot_video(numbers["video"], out / "fig_video.png", dpi=dpi))
             numbers["video"].pop("trajectories")
+        if "eLaw" in names:
+            numbers["eLaw"] = elaw_data(experiment)
+            written.append(plots.plot_elaw(numbers["eLaw"], out / "fig_eLaw.png", dpi=dpi))
     (out / "figures.json").write_text(to_json(numbers, indent=1))
     (out / "figures.md").write_text(summary_markdown(numbers, fmu_path))
     return [str(p) for p in written] + [str(out / "figures.json"), str(out / "figures.md")]
@@ -217,4 +241,11 @@ def summary_markdown(numbers, fmu_path):
                   f"Blue: IWC {b['iwc']}, leaves with w = {b['w_return']:.3g} = "
                   f"{b['w_return'] / v['params']['epsilon']:.3g} eps.",
                   ""]
+    if "eLaw" in numbers:
+        d = numbers["eLaw"]
+        worst = max(abs(q["rel_error"]) for q in d["points"])
+        lines += ["## e against the compliance law's nonlinearity (fig_eLaw.png)", "",
+                  f"w/v0 of the FMU at eps = {d['params']['epsilon']:g} beside the rigid limit's e for kappa and "
+                  f"beta from 0 to {max(LAW_VALUES):g} (theta0 = {d['params']['theta0']:g}, delta = "
+                  f"{', '.join(f'{x:g}' for x in LAW_DELTAS)}): largest relative deviation {worst:.1e}.", ""]
     return "\n".join(lines)

@@ -173,3 +173,30 @@ def plot_video(d, path, *, dpi=150):
                  rf"$\theta\approx{p['theta']}$, $\phi\approx{p['phi']}$, $v\approx{v0:.2f}$; "
                  rf"$w_{{1*}}={d['w1_star']:.3f}$", fontsize=11)
     return _save(fig, path, dpi)
+
+
+def plot_elaw(d, path, *, dpi=150):
+    """e(delta, theta0) against the compliance law's kappa (a) and beta (b): the rigid limit
+    (painleve.rigid_limit) as curves, the FMU's w/v0 at small eps as points."""
+    from . import rigid_limit
+    p = d["params"]
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    for ax, parameter, what in zip(axes, ("kappa", "beta"), ("(a) a stiffening spring", "(b) damping that grows "
+                                                                                          "with penetration")):
+        pts = [q for q in d["points"] if q["parameter"] == parameter]
+        values = np.linspace(0.0, max(q["value"] for q in pts), 60)
+        for delta, colour in zip(sorted({q["delta"] for q in pts}), ("tab:blue", "tab:orange", "tab:green")):
+            curve = rigid_limit.e(delta, p["theta0"], v0=p["v0"], alpha=p["alpha"], mu=p["mu"],
+                                  **{parameter: values})
+            ax.plot(values, curve, "-", color=colour, lw=1.5, label=rf"rigid limit, $\delta={delta:g}$")
+            mine = [q for q in pts if q["delta"] == delta]
+            ax.plot([q["value"] for q in mine], [q["e_simulated"] for q in mine], "x", color=colour, ms=8)
+        ax.plot([], [], "kx", label=rf"FMU $w/v_0$, $\epsilon={p['epsilon']:g}$")
+        ax.set_xlabel(rf"$\{parameter}$")
+        ax.set_ylabel(r"$e$")
+        ax.set_ylim(bottom=0)
+        ax.set_title(what, fontsize=10)
+        ax.legend(fontsize=8)
+    fig.suptitle(rf"e against the compliance law's nonlinearity: $\theta_0={p['theta0']:g}$, "
+                 rf"$\alpha={p['alpha']:g}$, $\mu={p['mu']:g}$, $v_0={p['v0']:g}$", fontsize=11)
+    return _save(fig, path, dpi)
