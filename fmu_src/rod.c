@@ -1,7 +1,7 @@
 /* The compliant Painleve rod (Hogan & Kristiansen), physics and mode logic.
  *
  * Modes are discrete states that change only at events, so the right-hand
- * side is smooth between events (MODEL.md §2):
+ * side is smooth between events (docs/model.md §2):
  *   contact  F_N = h/eps with h = h(y/eps, w) the compliance law (rod.h; the
  *            paper's linear g = -y/eps - delta w by default, eq FN)
  *   slip     s = +1 / -1: eq Painleve with q_s, p_s, c_s
@@ -113,8 +113,8 @@ static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
  * F_T = (a + alpha sin cos F_N)/k (k = 1 + alpha sin^2), and eq dynrodsc with
  * that F_T gives w' = b + S_w F_N - alpha sin cos a/k, phi' = S_phi F_N +
  * alpha sin a/k: the Filippov combination of the two slip fields with weight
- * (a + q_- F_N)/((q_- - q_+) F_N) on slip+. Proposition lem:Filippov (and
- * MODEL.md §1) take the weight q_-/(q_- - q_+), i.e. drop the a-terms: O(1)
+ * (a + q_- F_N)/((q_- - q_+) F_N) on slip+. Proposition lem:Filippov (as
+ * docs/model.md §1 notes) takes the weight q_-/(q_- - q_+), i.e. drops the a-terms: O(1)
  * over a stick of duration O(eps), so Theorem 1's limits are the same, but
  * without them (w', phi') are not those of any friction force, and the stuck
  * rod gains energy at the rate phi^3 sin cos. With them F_T v = 0 and only the

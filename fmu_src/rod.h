@@ -1,6 +1,6 @@
 /* The compliant Painleve rod of Hogan & Kristiansen: physics only, no FMI.
  *
- * States, derivatives, event indicators and the mode logic of MODEL.md §1-2.
+ * States, derivatives, event indicators and the mode logic of docs/model.md §1-2.
  * Every function is pure apart from rod_event_update, which may move the
  * state off a switching surface; nothing here keeps global state. */
 #ifndef ROD_H
@@ -86,7 +86,7 @@ void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX],
 /* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
 void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
 
-/* The mode the rules of MODEL.md §2 give at state x, coming from mode m.
+/* The mode the rules of docs/model.md §2 give at state x, coming from mode m.
  * May set v to exactly 0 (entering or re-deciding stick); says so in *x_changed. */
 RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed);
 

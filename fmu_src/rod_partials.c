@@ -1,5 +1,5 @@
 /* Partial derivatives of the rod's smooth branches, derived by hand from the
- * equations that rod.c evaluates (the paper's eq coeffs and eq Sw, MODEL.md §1,
+ * equations that rod.c evaluates (the paper's eq coeffs and eq Sw, docs/model.md §1,
  * the exact Filippov sticking field of rod.c's mode_gains).
  *
  * Notation: sn = sin theta, cs = cos theta, al = alpha, k = 1 + al sn^2,
