@@ -17,6 +17,7 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real t, fmi2Real h, fmi2Boolean noSet
     REQUIRE(call, isfinite(t) && fabs(t - in->time) <= SAME_TIME * fmax(1, fabs(t)),
             "currentCommunicationPoint = %.17g is not the instance's time %.17g", t, in->time);
     REQUIRE(call, isfinite(h) && h > 0, "communicationStepSize = %g must be finite and > 0", h);
+    in->time = t;    /* the master's point: the same to 1e-12, and where the step's times are counted from */
     StepEnd end;
     if (instance_integrate(in, call, t + h, THROUGH_EVENTS, &end) != STATUS_OK) return fmi2Error;
     in->last_successful_time = in->time;

@@ -56,6 +56,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                               : self->event_mode_used     ? RETURN_AT_EVENT
                                                           : RETURN_AFTER_EVENT;
     StepEnd end;
+    in->time = t;    /* the master's point: the same to 1e-12; lastSuccessfulTime is never before it */
     if (instance_integrate(in, call, t + h, policy, &end) != STATUS_OK) return fmi3Error;
     *earlyReturn = end == STEP_EVENT;
     *eventHandlingNeeded = self->event_pending = end == STEP_EVENT && policy == RETURN_AT_EVENT;

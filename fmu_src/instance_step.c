@@ -36,6 +36,7 @@ Status instance_integrate(Instance *in, const char *call, double t_end, StepPoli
     if (!in->solver) in->solver = cosim_new();
     if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
     if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
+    const double t_start = in->time;
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
     while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
         char err[512];
@@ -45,6 +46,9 @@ Status instance_integrate(Instance *in, const char *call, double t_end, StepPoli
             return instance_fail(in, call, "%s", err);
         }
         if (r == COSIM_REACHED) break;
+        /* CVODE continues from its own last time, which a master's communication point may pass
+         * by rounding errors: a root it locates before the step's start is at the start. */
+        in->time = fmax(in->time, t_start);
         in->solver_live = false;
         if (policy == RETURN_AT_EVENT) {
             *end = STEP_EVENT;
