@@ -120,10 +120,11 @@ typedef enum {
 
 typedef enum { STEP_REACHED, STEP_EVENT } StepEnd;
 
-/* Integrates with the embedded CVODE from the instance's time towards t_end,
- * events as the policy says (the instance's time is the event's where the
- * step ends at one). STATUS_ERROR with a message if the solver fails or was
- * not built in. */
-Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end);
+/* One Co-Simulation step from the master's communication point t (the
+ * instance's time to 1e-12) over h > 0, with the embedded CVODE, events as the
+ * policy says (where the step ends at one, the instance's time is the
+ * event's); the last successful time follows. STATUS_ERROR with a message if
+ * t or h is wrong, or the solver fails or was not built in. */
+Status instance_step(Instance *in, const char *call, double t, double h, StepPolicy policy, StepEnd *end);
 
 #endif

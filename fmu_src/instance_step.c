@@ -30,9 +30,8 @@ static Status restart(Instance *in, const char *call)
     return STATUS_OK;
 }
 
-Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
 {
-    *end = STEP_REACHED;
     if (!in->solver) in->solver = cosim_new();
     if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
     if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
@@ -71,11 +70,27 @@ void instance_free_solver(Instance *in)
     in->solver = NULL;
 }
 
-Status instance_integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
 {
-    (void)t_end, (void)policy;
-    *end = STEP_REACHED;
+    (void)t_end, (void)policy, (void)end;
     return instance_fail(in, call, "this binary was built without SUNDIALS CVODE: Co-Simulation is not available "
                                    "(rebuild with libsundials-dev installed, or use Model Exchange)");
 }
 #endif
+
+/* Communication points closer than this (relative) are the same point. */
+#define SAME_TIME 1e-12
+
+Status instance_step(Instance *in, const char *call, double t, double h, StepPolicy policy, StepEnd *end)
+{
+    *end = STEP_REACHED;
+    if (!(isfinite(t) && fabs(t - in->time) <= SAME_TIME * fmax(1, fabs(t))))
+        return instance_fail(in, call, "currentCommunicationPoint = %.17g is not the instance's time %.17g", t,
+                             in->time);
+    if (!(isfinite(h) && h > 0))
+        return instance_fail(in, call, "communicationStepSize = %g must be finite and > 0", h);
+    in->time = t;    /* the master's point: where the step starts, and nothing it reports comes before */
+    if (integrate(in, call, t + h, policy, end) != STATUS_OK) return STATUS_ERROR;
+    in->last_successful_time = in->time;
+    return STATUS_OK;
+}

@@ -71,7 +71,6 @@
 #define instance_fail NAMESPACED(instance_fail)
 #define instance_free_solver NAMESPACED(instance_free_solver)
 #define instance_get NAMESPACED(instance_get)
-#define instance_integrate NAMESPACED(instance_integrate)
 #define instance_log_categories NAMESPACED(instance_log_categories)
 #define instance_log_event NAMESPACED(instance_log_event)
 #define instance_model NAMESPACED(instance_model)
@@ -85,6 +84,7 @@
 #define instance_snapshot_size NAMESPACED(instance_snapshot_size)
 #define instance_snapshot_take NAMESPACED(instance_snapshot_take)
 #define instance_start NAMESPACED(instance_start)
+#define instance_step NAMESPACED(instance_step)
 #define instance_state_name NAMESPACED(instance_state_name)
 
 /* cosim.c: Co-Simulation's integrator */
