@@ -33,10 +33,9 @@ struct CoSim {
 
 static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
 {
-    (void)t;
     const Model *m = ((CoSim *)data)->model;
     double *dx = N_VGetArrayPointer(ydot);
-    model_derivatives_at(m, N_VGetArrayPointer(y), dx);
+    model_derivatives_at(m, t, N_VGetArrayPointer(y), dx);
     for (int i = 0; i < MODEL_NX; ++i)
         if (!isfinite(dx[i])) return -1;
     return 0;
@@ -44,19 +43,18 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
 
 static int roots(sunrealtype t, N_Vector y, sunrealtype *z, void *data)
 {
-    (void)t;
     const Model *m = ((CoSim *)data)->model;
-    model_indicators_at(m, N_VGetArrayPointer(y), z);
+    model_indicators_at(m, t, N_VGetArrayPointer(y), z);
     return 0;
 }
 
 static int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *data, N_Vector t1, N_Vector t2,
                     N_Vector t3)
 {
-    (void)t, (void)fy, (void)t1, (void)t2, (void)t3;
+    (void)fy, (void)t1, (void)t2, (void)t3;
     const Model *m = ((CoSim *)data)->model;
     double Jr[MODEL_NX][MODEL_NX];
-    model_jacobian_at(m, N_VGetArrayPointer(y), Jr);
+    model_jacobian_at(m, t, N_VGetArrayPointer(y), Jr);
     for (int i = 0; i < MODEL_NX; ++i)
         for (int j = 0; j < MODEL_NX; ++j) SM_ELEMENT_D(J, i, j) = Jr[i][j];
     return 0;

@@ -193,7 +193,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     /* Check all, then set all: a rejected call changes nothing. */
     for (size_t i = 0; i < nvr; ++i)
         if (instance_check_set(in, call, vr[i], TYPE_REAL, value[i]) != STATUS_OK) return fmi2Error;
-    for (size_t i = 0; i < nvr; ++i) model_set(&in->model, vr[i], value[i]);
+    for (size_t i = 0; i < nvr; ++i) instance_set(in, vr[i], value[i]);
     return fmi2OK;
 }
 

@@ -66,7 +66,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
     /* Check all, then set all: a rejected call changes nothing. */
     for (size_t i = 0; i < nValueReferences; ++i)
         if (instance_check_set(in, call, valueReferences[i], TYPE_REAL, values[i]) != STATUS_OK) return fmi3Error;
-    for (size_t i = 0; i < nValueReferences; ++i) model_set(&in->model, valueReferences[i], values[i]);
+    for (size_t i = 0; i < nValueReferences; ++i) instance_set(in, valueReferences[i], values[i]);
     return fmi3OK;
 }
 

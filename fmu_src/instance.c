@@ -104,6 +104,7 @@ Status instance_discard(Instance *in, const char *call, const char *fmt, ...)
 
 Model *instance_model(Instance *in)
 {
+    model_set_time(&in->model, in->time);
     if (in->state == InitializationMode) model_decide_initial_mode(&in->model);
     return &in->model;
 }
@@ -118,6 +119,7 @@ void instance_start(Instance *in)
 Status instance_event_update(Instance *in, const char *call, bool *states_changed)
 {
     ModelEvent e;
+    model_set_time(&in->model, in->time);
     if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);
     *states_changed = e.switched || e.states_changed;
@@ -146,23 +148,45 @@ Status instance_get(Instance *in, const char *call, unsigned int vr, VariableTyp
     return STATUS_OK;
 }
 
+/* When a variable of each kind may be set: parameters are fixed once
+ * initialization ends; continuous states may also be set between events
+ * (FMI 2.0.4 §3.2.3 condition 5); inputs whenever the master gives them. */
+static InstanceState settable_when(VariableKind kind, const char **when)
+{
+    switch (kind) {
+    case KIND_STATE:
+        *when = "before initialization ends or in Continuous-Time Mode";
+        return BEFORE_INIT_ENDS | ContinuousTimeMode;
+    case KIND_INPUT:
+        *when = "before initialization ends, in Event, Continuous-Time or Step Mode";
+        return BEFORE_INIT_ENDS | EventMode | ContinuousTimeMode | StepMode;
+    default:
+        *when = "before initialization ends";
+        return BEFORE_INIT_ENDS;
+    }
+}
+
 Status instance_check_set(Instance *in, const char *call, unsigned int vr, VariableType type, double value)
 {
     const VariableInfo *info = variable_of(in, call, vr, type);
     if (!info) return STATUS_ERROR;
     if (!model_settable(info)) return instance_fail(in, call, "%s is calculated by the model and cannot be set", info->name);
-    /* Parameters are fixed once initialization ends; continuous states may also
-     * be set between events (FMI 2.0.4 §3.2.3 condition 5). */
-    const InstanceState when = info->kind == KIND_STATE ? BEFORE_INIT_ENDS | ContinuousTimeMode : BEFORE_INIT_ENDS;
-    if (!(in->state & when))
-        return instance_fail(in, call, "%s can be set only %s (state is %s)", info->name,
-                             info->kind == KIND_STATE ? "before initialization ends or in Continuous-Time Mode"
-                                                      : "before initialization ends", instance_state_name(in->state));
+    const char *when;
+    if (!(in->state & settable_when(info->kind, &when)))
+        return instance_fail(in, call, "%s can be set only %s (state is %s)", info->name, when,
+                             instance_state_name(in->state));
     const char *reason = model_check(vr, value);
     if (reason)
         return instance_fail(in, call, "%s = %g %s: allowed range is [%g, %g]", info->name, value, reason, info->min,
                              info->max);
     return STATUS_OK;
+}
+
+void instance_set(Instance *in, unsigned int vr, double value)
+{
+    const VariableInfo *info = model_variable(vr);
+    if (info && info->kind == KIND_INPUT && model_get(&in->model, vr) != value) in->inputs_jumped = true;
+    model_set(&in->model, vr, value);
 }
 
 static Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)
@@ -211,8 +235,8 @@ Status instance_derivatives(Instance *in, const char *call, const unsigned int u
     const bool initializing = in->state == InitializationMode;
     for (size_t j = 0; j < n_knowns; ++j) {
         const VariableInfo *k = model_variable(knowns[j]);
-        if (!k || !(k->kind == KIND_STATE || (initializing && k->kind == KIND_PARAMETER)))
-            return instance_fail(in, call, "known value reference %u is not a continuous state%s", knowns[j],
+        if (!k || !(k->kind == KIND_STATE || k->kind == KIND_INPUT || (initializing && k->kind == KIND_PARAMETER)))
+            return instance_fail(in, call, "known value reference %u is not a continuous state or input%s", knowns[j],
                                  initializing ? " nor a parameter" : " (parameters are knowns in Initialization Mode only)");
     }
     /* Unknowns (FMI 2.0.4 §2.1.9): the Real outputs and derivatives, in

@@ -49,6 +49,7 @@ struct Instance {
     void *solver;                /* Co-Simulation's integrator, made on the first step */
     bool solver_live;            /* the solver holds this trajectory at `time`: a step continues it */
     double last_successful_time;
+    bool inputs_jumped;          /* an input changed since the last Co-Simulation step */
 };
 
 extern const char *const instance_log_categories[N_LOG_CATEGORIES];
@@ -92,6 +93,10 @@ Status instance_get(Instance *in, const char *call, unsigned int vr, VariableTyp
 /* Checks that vr is a settable variable of `type`, settable now, and that
  * value is in its range (nothing is set). */
 Status instance_check_set(Instance *in, const char *call, unsigned int vr, VariableType type, double value);
+
+/* Sets vr (checked by instance_check_set): an input that changes makes the
+ * next Co-Simulation step start with an event update and a fresh integrator. */
+void instance_set(Instance *in, unsigned int vr, double value);
 
 /* The model's vectors that Model Exchange reads. */
 typedef enum { ARRAY_STATES, ARRAY_DERIVATIVES, ARRAY_EVENT_INDICATORS, ARRAY_NOMINALS } ModelArray;

@@ -210,7 +210,7 @@ Status instance_snapshot_deserialize(Instance *in, const char *call, const unsig
     char magic[8], guid[64];
     uint32_t version = 0, guid_len = 0, n_fields = 0, checksum = 0;
     CHECK(call, take_bytes(&k, magic, 8) && memcmp(magic, MAGIC, 8) == 0,
-            "not a PainleveRod FMU state (%zu bytes, no 'PRODSTAT' header)", size);
+            "not a %s FMU state (%zu bytes, no 'PRODSTAT' header)", MODEL_NAME, size);
     /* The checksum first: any damage is named as such, wherever it is. */
     Cursor tail = { .in = k.in, .at = size - 4, .size = size };
     CHECK(call, size >= 12 && take_u32(&tail, &checksum) && checksum == fnv1a(k.in, size - 4),

@@ -34,6 +34,12 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
 {
     if (!in->solver) in->solver = cosim_new();
     if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
+    if (in->inputs_jumped) {   /* the master's new inputs: the mode may change (a stick may end) */
+        bool changed;
+        in->inputs_jumped = false;
+        in->solver_live = false;
+        if (instance_event_update(in, call, &changed) != STATUS_OK) return STATUS_ERROR;
+    }
     if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
     const double t_start = in->time;
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */

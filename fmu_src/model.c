@@ -126,7 +126,7 @@ void model_get_derivatives(Model *m, double dx[MODEL_NX])
     memcpy(dx, m->dx, sizeof m->dx);
 }
 
-void model_get_indicators(Model *m, double z[MODEL_NZ])
+void model_get_indicators(Model *m, double z[])
 {
     update_derived(m);
     memcpy(z, m->z, sizeof m->z);
@@ -137,18 +137,26 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     rod_nominals(&m->params, nominal);
 }
 
-void model_derivatives_at(const Model *m, const double x[MODEL_NX], double dx[MODEL_NX])
+void model_set_time(Model *m, double time)
 {
+    (void)m, (void)time;   /* the rod is autonomous */
+}
+
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
+{
+    (void)time;
     rod_derivatives(&m->params, m->mode, x, dx);
 }
 
-void model_indicators_at(const Model *m, const double x[MODEL_NX], double z[MODEL_NZ])
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
+    (void)time;
     rod_event_indicators(&m->params, m->mode, x, z);
 }
 
-void model_jacobian_at(const Model *m, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
 {
+    (void)time;
     rod_jacobian(&m->params, m->mode, x, J);
 }
 

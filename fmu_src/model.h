@@ -8,10 +8,15 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "config.h"
+/* The model's own metadata: its directory comes first on the include path
+ * (CMakeLists.txt), so each model built on this interface gets its own. */
+#include <config.h>
 
 typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
-typedef enum { KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE } VariableKind;
+/* PARAMETER: fixed, set before initialization ends; STATE: a continuous state;
+ * INPUT: continuous, set by the master at any time (causality input);
+ * CALCULATED: continuous, derived; DISCRETE: changes only at events. */
+typedef enum { KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT } VariableKind;
 
 /* Value references, in the order of config.h's list and modelDescription.xml. */
 #define MODEL_VR_ENUM(id, ...) VR_##id,
@@ -30,7 +35,7 @@ typedef struct {
 /* NULL if vr is not a variable of the model. */
 const VariableInfo *model_variable(unsigned int vr);
 
-/* Parameters and initial states may be set before initialization ends. */
+/* Parameters, initial states and inputs may be set (instance_check_set says when). */
 bool model_settable(const VariableInfo *info);
 
 /* The start values of every variable: a new model. */
@@ -55,14 +60,19 @@ unsigned int model_state_vr(size_t i);
 void model_get_states(const Model *m, double x[MODEL_NX]);
 void model_set_states(Model *m, const double x[MODEL_NX]);
 void model_get_derivatives(Model *m, double dx[MODEL_NX]);
-void model_get_indicators(Model *m, double z[MODEL_NZ]);
+void model_get_indicators(Model *m, double z[]);
 void model_get_nominals(const Model *m, double nominal[MODEL_NX]);
 
+/* The time the getters above evaluate at (the instance's; a model driven by
+ * time, such as a harmonic force, needs it; an autonomous one ignores it). */
+void model_set_time(Model *m, double time);
+
 /* The current mode's right-hand side, indicators and d der(x)/d x at a trial
- * state x, for an embedded integrator; the model is not changed. */
-void model_derivatives_at(const Model *m, const double x[MODEL_NX], double dx[MODEL_NX]);
-void model_indicators_at(const Model *m, const double x[MODEL_NX], double z[MODEL_NZ]);
-void model_jacobian_at(const Model *m, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
+ * time and state x, for an embedded integrator; the model is not changed.
+ * (Indicator arrays are [] : a model may have none.) */
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX]);
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[]);
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
 
 /* ------------------------------------------------------- modes, events */
 

@@ -58,6 +58,7 @@
 #define model_restore NAMESPACED(model_restore)
 #define model_set NAMESPACED(model_set)
 #define model_set_states NAMESPACED(model_set_states)
+#define model_set_time NAMESPACED(model_set_time)
 #define model_settable NAMESPACED(model_settable)
 #define model_start NAMESPACED(model_start)
 #define model_state_vr NAMESPACED(model_state_vr)
@@ -65,6 +66,7 @@
 
 /* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */
 #define instance_check_set NAMESPACED(instance_check_set)
+#define instance_set NAMESPACED(instance_set)
 #define instance_derivatives NAMESPACED(instance_derivatives)
 #define instance_discard NAMESPACED(instance_discard)
 #define instance_event_update NAMESPACED(instance_event_update)
