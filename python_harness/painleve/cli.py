@@ -5,12 +5,14 @@ paper's figures from simulations of the FMU, and sweeps on dask.
     painleve validate build/PainleveRod.fmu --report out/validation.md
     painleve figures --out out/figures
     painleve sweep --theta0 0.5:1.4:10 --eps 1e-5:1e-3:3:log --out out/sweep.parquet
+    painleve couple --master libcosim --set table.F0=100 --out out/couple.png
 
 Bad input ends with one line that says what to change (exit status 2); a
 failed validation or a simulation the FMU gave up on exits with status 1."""
 import math
 import os
 import pathlib
+import shutil
 import signal
 import sys
 import time
@@ -229,7 +231,75 @@ def _interrupt(signum, frame):
     raise KeyboardInterrupt
 
 
-COMMANDS = {"iwc": cmd_iwc, "validate": cmd_validate, "figures": cmd_figures, "sweep": cmd_sweep}
+# ------------------------------------------------------------------ couple
+def cmd_couple(args):
+    import tempfile
+
+    import numpy as np
+    from .cli_parser import coupled_fmu
+    from .coupled import RECORD, Setup, impulse_on_rod, impulse_on_table, write_coupled_ssp
+    from .coupled_figure import coupled_figure
+    from .masters import MasterUnavailable, run, steps_of
+    from .ssp_check import check_ssp
+    rod, rod_vars = coupled_fmu(args.rod, "rod")
+    table, table_vars = coupled_fmu(args.table, "table")
+    setup = Setup()
+    for comp, name, value in args.start_values:
+        variables = rod_vars if comp == "rod" else table_vars
+        v = variables.get(name)
+        if v is None or not (v.causality == "parameter" or v.initial == "exact"):
+            settable = sorted(n for n, w in variables.items() if w.causality == "parameter" or w.initial == "exact")
+            raise UsageError(f"painleve couple: --set {comp}.{name}: the {comp} has no {'such variable' if v is None else 'start value to set there'}; "
+                             f"it takes {', '.join(settable)}")
+        (setup.rod if comp == "rod" else setup.table)[name] = value
+    try:
+        n = steps_of(args.stop, args.step)
+    except ValueError:
+        raise UsageError(f"painleve couple: --stop {args.stop:g} is not a whole number of --step {args.step:g}; "
+                         f"give a step that divides it") from None
+    output_path(args.out, "painleve couple: --out")
+    for option in ("ssp", "csv"):
+        if getattr(args, option):
+            output_path(getattr(args, option), f"painleve couple: --{option}")
+    with tempfile.TemporaryDirectory(prefix="painleve-couple-") as work:
+        ssp = write_coupled_ssp(pathlib.Path(work) / "coupled.ssp", rod, table, setup, stop_time=args.stop)
+        problems = check_ssp(ssp)
+        if problems:
+            raise UsageError(f"painleve couple: the SSP is not valid: {problems[0]}"
+                             + (f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""))
+        start = time.monotonic()
+        try:
+            r = run(args.master, ssp, args.stop, args.step, RECORD)
+        except MasterUnavailable as err:
+            raise UsageError(f"painleve couple: {err}") from None
+        except Exception as err:
+            raise RunError(f"painleve couple: the {args.master} run failed: {one_line(err)}; try a smaller --step") from None
+        seconds = time.monotonic() - start
+        if args.ssp:
+            shutil.copyfile(ssp, args.ssp)
+    d = setup.dimensionless()
+    coupled_figure(r, args.out, setup=setup, dpi=args.dpi,
+                   title=f"rod on shaker table ({args.master}, h = {args.step:g} s): alpha = {d['alpha']:.3g}, "
+                         f"epsilon = {d['epsilon']:.3g}, delta = {d['delta']:.3g}, mu = {d['mu']:.3g}")
+    if args.csv:
+        np.savetxt(args.csv, np.column_stack([r[name] for name in r.dtype.names]), delimiter=",",
+                   header=",".join(r.dtype.names), comments="", fmt="%.17g")
+    on_rod, on_table = impulse_on_rod(r, setup), impulse_on_table(r, args.step)
+    print(f"Rod on shaker table: {rod} + {table}, master {args.master} (Jacobi, zero-order hold), "
+          f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
+    print(f"rod: alpha = {d['alpha']:.4g}, epsilon = {d['epsilon']:.4g}, delta = {d['delta']:.4g}, mu = {d['mu']:.4g}; "
+          f"theta0 = {d['theta0']:.4g}, v0 = {d['v0']:.4g} sqrt(g l), phi0 = {d['phi0']:.4g} sqrt(g/l)")
+    print(f"impulse of F_N over the run: on the rod {on_rod:.6g} N s (its momentum), on the table {on_table:.6g} N s "
+          f"(the inputs it held); difference {on_rod - on_table:+.3g} N s (O(h))")
+    print(f"at t = {args.stop:g}: rod y = {r['rod.y'][-1]:.6g} m, w = {r['rod.w'][-1]:.6g} m/s, "
+          f"theta = {r['rod.theta'][-1]:.6g}; table z = {r['table.position'][-1]:.6g} m, "
+          f"z' = {r['table.velocity'][-1]:.6g} m/s")
+    print(f"figure: {args.out}" + (f"; SSP: {args.ssp}" if args.ssp else "") + (f"; table: {args.csv}" if args.csv else ""))
+    return 0
+
+
+COMMANDS = {"iwc": cmd_iwc, "validate": cmd_validate, "figures": cmd_figures, "sweep": cmd_sweep,
+            "couple": cmd_couple}
 
 
 def user_error(err, command):

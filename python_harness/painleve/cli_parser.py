@@ -254,7 +254,7 @@ def build_parser():
                       "a simulation), 2 bad input.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
-    for add in (_add_iwc, _add_validate, _add_figures, _add_sweep):
+    for add in (_add_iwc, _add_validate, _add_figures, _add_sweep, _add_couple):
         add(sub)
     return p
 
@@ -347,3 +347,91 @@ def _add_sweep(sub):
     _fmu_option(sw)
     _interface_option(sw)
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+# ------------------------------------------------------------------ couple
+DEFAULT_ROD_FMU = "build/PainleveRodSI.fmu"
+DEFAULT_TABLE_FMU = "build/ShakerTable.fmu"
+
+
+def positive(text):
+    x = _number(text)
+    if x <= 0:
+        raise argparse.ArgumentTypeError(f"{text} is not > 0")
+    return x
+
+
+def start_value(text):
+    """COMPONENT.NAME=VALUE, a start value for the rod or the table (checked against the FMU later)."""
+    m = re.fullmatch(r"(rod|table)\.([A-Za-z_][A-Za-z0-9_]*)=(.+)", text)
+    if not m:
+        raise argparse.ArgumentTypeError(f"{text!r} is not COMPONENT.NAME=VALUE with COMPONENT rod or table "
+                                         f"(e.g. rod.k=2e5, table.M=1e6)")
+    return m.group(1), m.group(2), _number(m.group(3))
+
+
+def _add_couple(sub):
+    from .masters import MASTERS
+    cp = sub.add_parser("couple", allow_abbrev=False, help="the rod on a shaker table, co-simulated from an SSP file",
+                        description="Couples PainleveRodSI.fmu (the rod in SI units, with a moving floor as input) "
+                                    "with ShakerTable.fmu (a table top on a spring-damper, shaken by a harmonic "
+                                    "force, loaded by the rod's contact forces) in an SSP archive "
+                                    "(SystemStructure.ssd + resources/*.fmu), checks the archive, runs it in a "
+                                    "co-simulation master (fixed communication step, Jacobi with zero-order hold) "
+                                    "and writes a figure: the rod and the table over time, the forces on both "
+                                    "sides. Prints the impulse of the normal force on each side (equal to O(h)).")
+    cp.add_argument("--rod", metavar="PATH", default=DEFAULT_ROD_FMU,
+                    help="the rod's FMU (default %(default)s)")
+    cp.add_argument("--table", metavar="PATH", default=DEFAULT_TABLE_FMU,
+                    help="the table's FMU (default %(default)s)")
+    cp.add_argument("--master", choices=MASTERS, default="fmpy",
+                    help="fmpy (fmpy.ssp), libcosim (libcosimpy) or ecos (ecospy); the last two are installed by "
+                         "`bash run.sh test` (default %(default)s)")
+    cp.add_argument("--stop", type=positive, default=0.5, metavar="SECONDS", help="stop time (default %(default)s)")
+    cp.add_argument("--step", type=positive, default=1e-4, metavar="SECONDS",
+                    help="communication step h; the stop time must be a whole number of steps (default %(default)s)")
+    cp.add_argument("--set", dest="start_values", type=start_value, action="append", default=[],
+                    metavar="COMPONENT.NAME=VALUE",
+                    help="a start value bound in the SSP, repeatable: a parameter or an initial state of the rod "
+                         "(m, l, J, g, k, c, mu; x, v, y, w, theta, phi) or of the table (M, K, C, F0, frequency, "
+                         "belt_speed; position, velocity)")
+    cp.add_argument("--out", default="out/couple.png", metavar="PNG", help="the figure (default %(default)s)")
+    cp.add_argument("--ssp", metavar="PATH", help="also keep the SSP archive there")
+    cp.add_argument("--csv", metavar="PATH", help="also write the run's table (one row per communication point)")
+    cp.add_argument("--dpi", type=dpi_value, default=150, help="PNG resolution, 10 to 1200 (default %(default)s)")
+
+
+ROD_VARIABLES = ("y_floor", "w_floor", "v_floor", "F_N", "F_T", "vy_cm", "theta", "phi")
+TABLE_VARIABLES = ("position", "velocity", "belt_velocity", "F_N", "F_T")
+
+
+def coupled_fmu(path, role):
+    """The rod's or the table's FMU for `painleve couple`, checked so that a wrong one ends in one
+    line: missing, not an FMU, not FMI 2.0 (libcosim loads FMI 1.0 and 2.0 only), another model,
+    no Co-Simulation, no binary for this platform. Returns the path and its variables by name."""
+    default, required = {"rod": (DEFAULT_ROD_FMU, ROD_VARIABLES), "table": (DEFAULT_TABLE_FMU, TABLE_VARIABLES)}[role]
+    p = pathlib.Path(path)
+    where = f"painleve couple: --{role} {p}"
+    if not p.exists():
+        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default}) or give "
+                         f"the path of one")
+    if p.is_dir() or not zipfile.is_zipfile(p):
+        raise UsageError(f"{where} is not an FMU (a zip archive such as {default}); give the .fmu file")
+    version = _fmi_version(p)
+    if version != "2.0":
+        raise UsageError(f"{where} is an FMI {version} FMU; the coupled study runs FMI 2.0 FMUs (build/*.fmu)")
+    from fmpy import platform, read_model_description, supported_platforms
+    try:
+        md = read_model_description(str(p))
+    except Exception as err:
+        raise UsageError(f"{where} has no readable modelDescription.xml ({one_line(err)}); rebuild it") from None
+    names = {v.name: v for v in md.modelVariables}
+    missing = [n for n in required if n not in names]
+    if missing:
+        raise UsageError(f"{where} is an FMU of the model {md.modelName!r}, not the {role} (it has no variable "
+                         f"{', '.join(missing[:3])}); give {default}")
+    if md.coSimulation is None:
+        raise UsageError(f"{where} has no Co-Simulation interface, which the masters drive")
+    if platform not in supported_platforms(str(p)):
+        raise UsageError(f"{where} has no binary for {platform}; compile it here first")
+    return str(p), names

@@ -13,17 +13,21 @@ value as the FMU read it back after the step: what it held over [t_(k-1), t_k]).
   by one step and drops the extra row.
 - libcosim (libcosimpy 0.0.6, PyPI; tests/importers/requirements.txt): fixed-step algorithm,
   Jacobi: all FMUs step (in parallel), then connected values are transferred. Its clock counts
-  integer nanoseconds; it reads an .ssp archive (typed connectors required) and applies inline
-  parameter bindings. The initialization transfers initial outputs to inputs.
+  integer nanoseconds; it reads an .ssp archive (typed connectors required: "A valid connector
+  type was not found!") and applies inline parameter bindings to parameters and inputs only
+  (`run_libcosim` sets the states' start values). The initialization transfers initial outputs
+  to inputs. Its observer reads an input as the value held in the step.
 - ecos (ecospy 0.7.2, PyPI; Debian's libtbb12): fixed-step algorithm, Jacobi (each instance:
   set inputs, step, get outputs, in parallel; then connections). It applies a parameter set
-  of the SSP by name at init (ssp.START_VALUES).
+  of the SSP by name at init (ssp.START_VALUES), states included, and transfers the initial
+  outputs. It reads an input back as the value already copied for the next step; `run_ecos`
+  shifts it back by one step.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .ssp import START_VALUES, parameter_set
+from .ssp import START_VALUES, parameter_set, start_values
 
 MASTERS = ("fmpy", "libcosim", "ecos")
 
@@ -52,6 +56,13 @@ def _split(name):
     return comp, var
 
 
+def _inputs(ssp_path):
+    """The archive's input connectors, as "component.variable"."""
+    from fmpy.ssp.ssd import read_ssd
+    return {f"{el.name}.{c.name}" for el in read_ssd(str(ssp_path)).system.elements
+            for c in el.connectors if c.kind == "input"}
+
+
 def run_fmpy(ssp_path, stop_time, step, record):
     from fmpy.ssp.simulation import simulate_ssp
     n = steps_of(stop_time, step)
@@ -60,9 +71,7 @@ def run_fmpy(ssp_path, stop_time, step, record):
     missing = [name for name in record if name not in r.dtype.names]
     if missing:
         raise KeyError(f"fmpy: {missing} are not connectors of the SSP (it records connectors only)")
-    from fmpy.ssp.ssd import read_ssd
-    inputs = {f"{el.name}.{c.name}" for el in read_ssd(str(ssp_path)).system.elements
-              for c in el.connectors if c.kind == "input"}
+    inputs = _inputs(ssp_path)
     columns = {}
     for name in record:
         values = np.asarray(r[name], dtype=float)
@@ -96,6 +105,13 @@ def run_libcosim(ssp_path, stop_time, step, record):
     refs = {}
     for comp, i in index.items():
         refs[comp] = {v.name.decode(): v.reference for v in execution.slave_variables(i)}
+    # libcosim 0.0.6 applies a binding to parameters and inputs only ("SSP parameter set start
+    # values: Non-input causality for variable rod:theta", a warning): the start values of the
+    # states (outputs with initial="exact") are set through its initial-value API.
+    for comp, values in start_values(ssp_path).items():
+        for var, value in values.items():
+            if not execution.real_initial_value(index[comp], refs[comp][var], value):
+                raise RuntimeError(f"libcosim: cannot set the start value {comp}.{var} = {value!r}")
     wanted = [(_split(name), name) for name in record]
     rows = np.zeros((n, len(record)))
     times = np.zeros(n)
@@ -127,11 +143,18 @@ def run_ecos(ssp_path, stop_time, step, record):
     with sim:
         if not sim.init(parameter_set=START_VALUES):
             raise RuntimeError(f"ecos: init failed: {EcosLib.get_last_error()}")
+        previous = [sim.get_real(i) for i in ids]      # t = 0, after the initial exchange
         for k in range(n):
             times[k] = sim.step()
             rows[k] = [sim.get_real(i) for i in ids]
         sim.terminate()
-    return _table(times, {name: rows[:, j] for j, name in enumerate(record)}, record)
+    columns = {name: rows[:, j] for j, name in enumerate(record)}
+    # ecos reads an input back after the exchange that follows the step: the value for the next
+    # step. The value held during step k is the one read after step k - 1 (after init for k = 1).
+    for j, name in enumerate(record):
+        if name in _inputs(ssp_path):
+            columns[name] = np.concatenate(([previous[j]], rows[:-1, j]))
+    return _table(times, columns, record)
 
 
 RUNNERS = {"fmpy": run_fmpy, "libcosim": run_libcosim, "ecos": run_ecos}

@@ -1,0 +1,116 @@
+"""The coupled study of issue #15: PainleveRodSI on a ShakerTable, one SSP archive, run by a
+co-simulation master (painleve.masters).
+
+Coupling (docs/coupling.md): rod.y_floor <- table.position, rod.w_floor <- table.velocity,
+rod.v_floor <- table.belt_velocity, table.F_N <- rod.F_N, table.F_T <- rod.F_T. The rod's F_N
+pushes it up and the table down (Newton's third law across the connection); F_T is in the
+paper's sign, -F_T on the rod along x, +F_T on the table.
+
+What a run gives and what the physics fixes about it (the tests' independent checks):
+- the impulse the table receives from the rod is the sum of h times the F_N it holds in each
+  step (`impulse_on_table`); the impulse the rod receives is, by its momentum, m (vy_cm(T) -
+  vy_cm(0)) + m g T with no applied load (`impulse_on_rod`); a Jacobi master with a zero-order
+  hold hands the table the rod's F_N at the start of each step, a left Riemann sum, so the two
+  differ by O(h);
+- the table's own momentum, M (z'(T) - z'(0)) = int(-K z - C z' + F0 sin(2 pi f t)) dt - the
+  impulse it holds (`table_momentum_impulse`).
+"""
+from __future__ import annotations
+
+import math
+import pathlib
+import tempfile
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .ssp import Component, Connection, write_ssp
+
+ROD, TABLE = "rod", "table"
+ROD_INPUTS = ("y_floor", "w_floor", "v_floor")
+TABLE_INPUTS = ("F_N", "F_T")
+ROD_OUTPUTS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "x_cm", "y_cm", "vx_cm", "vy_cm",
+               "gap", "t_contact_end")
+TABLE_OUTPUTS = ("position", "velocity", "belt_velocity")
+CONNECTIONS = (
+    Connection((TABLE, "position"), (ROD, "y_floor")),
+    Connection((TABLE, "velocity"), (ROD, "w_floor")),
+    Connection((TABLE, "belt_velocity"), (ROD, "v_floor")),
+    Connection((ROD, "F_N"), (TABLE, "F_N")),
+    Connection((ROD, "F_T"), (TABLE, "F_T")),
+)
+# every variable a run records: the components' outputs and the inputs as each FMU held them
+RECORD = tuple(f"{ROD}.{n}" for n in ROD_OUTPUTS + ROD_INPUTS) + \
+    tuple(f"{TABLE}.{n}" for n in TABLE_OUTPUTS + TABLE_INPUTS)
+
+# The models' defaults (ISSUE15.md): the rod's start values, the table's parameters.
+ROD_DEFAULTS = dict(m=1.0, l=0.5, J=1.0 / 12, g=9.81, k=2e7, c=4500.0, mu=3.0,
+                    x=0.0, v=2.0, y=0.0, w=0.0, theta=1.0, phi=2.0)
+TABLE_DEFAULTS = dict(M=10.0, K=4e4, C=40.0, F0=50.0, frequency=5.0, belt_speed=0.0, position=0.0, velocity=0.0)
+
+
+@dataclass
+class Setup:
+    """The coupled system's start values: the rod's (SI parameters and initial state) and the
+    table's (parameters and initial state); whatever is not given keeps the defaults."""
+    rod: dict = field(default_factory=dict)
+    table: dict = field(default_factory=dict)
+
+    def rod_values(self):
+        return {**ROD_DEFAULTS, **self.rod}
+
+    def table_values(self):
+        return {**TABLE_DEFAULTS, **self.table}
+
+    def dimensionless(self):
+        """The paper's numbers of the rod (ISSUE15.md's scaling): alpha = m l^2/J, epsilon =
+        sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = v(0)/sqrt(g l), phi0 = phi(0) sqrt(l/g),
+        each against a floor at rest."""
+        r = self.rod_values()
+        m, l, g = r["m"], r["l"], r["g"]
+        return dict(alpha=m * l * l / r["J"], epsilon=math.sqrt(m * g / (r["k"] * l)), delta=r["c"] / math.sqrt(m * r["k"]),
+                    mu=r["mu"], theta0=r["theta"], v0=r["v"] / math.sqrt(g * l), phi0=r["phi"] * math.sqrt(l / g))
+
+
+def write_coupled_ssp(path, rod_fmu, table_fmu, setup=None, *, stop_time=1.0):
+    """The archive of the rod on the table, with the setup's start values bound."""
+    setup = setup or Setup()
+    comps = [Component(ROD, rod_fmu, setup.rod_values(), inputs=ROD_INPUTS, outputs=ROD_OUTPUTS),
+             Component(TABLE, table_fmu, setup.table_values(), inputs=TABLE_INPUTS, outputs=TABLE_OUTPUTS)]
+    return write_ssp(path, "rod_on_shaker_table", comps, CONNECTIONS, stop_time=stop_time)
+
+
+def run_coupled(rod_fmu, table_fmu, setup=None, *, stop_time, step, master="fmpy"):
+    """One coupled run in a temporary archive (removed after): the master's table (painleve.masters)."""
+    from .masters import run
+    with tempfile.TemporaryDirectory(prefix="painleve-couple-") as work:
+        ssp = write_coupled_ssp(pathlib.Path(work) / "coupled.ssp", rod_fmu, table_fmu, setup, stop_time=stop_time)
+        return run(master, ssp, stop_time, step, RECORD)
+
+
+def impulse_on_table(r, step):
+    """The rod's F_N as the table held it, integrated: what the table receives (downwards)."""
+    return step * float(np.sum(r[f"{TABLE}.F_N"]))
+
+
+def impulse_on_rod(r, setup):
+    """What the floor gave the rod (upwards), from the rod's momentum: m (vy_cm(T) - vy_cm(0)) + m g T,
+    vy_cm(0) = w(0) + l cos(theta(0)) phi(0) by the rod's kinematics (centre of mass at
+    y + l sin theta). No applied force is connected, F_y = 0."""
+    p = setup.rod_values()
+    vy0 = p["w"] + p["l"] * math.cos(p["theta"]) * p["phi"]
+    return p["m"] * (r[f"{ROD}.vy_cm"][-1] - vy0) + p["m"] * p["g"] * r["time"][-1]
+
+
+def table_momentum_impulse(r, setup):
+    """The impulse of F_N on the table from the table's momentum balance:
+    int F_N = int(-K z - C z' + F0 sin(2 pi f t)) dt - M (z'(T) - z'(0)), with int z' = z(T) - z(0)
+    exact, int sin exact, int z by the trapezoid rule on the communication grid (O(h^2): z is C^1)."""
+    p = setup.table_values()
+    t = np.concatenate(([0.0], r["time"]))
+    z = np.concatenate(([p["position"]], r[f"{TABLE}.position"]))
+    T, omega = t[-1], 2 * math.pi * p["frequency"]
+    drive = p["F0"] * (1 - math.cos(omega * T)) / omega if omega > 0 else 0.0
+    spring = p["K"] * float(np.sum(np.diff(t) * (z[1:] + z[:-1]) / 2))
+    damper = p["C"] * (z[-1] - z[0])
+    return -spring - damper + drive - p["M"] * (r[f"{TABLE}.velocity"][-1] - p["velocity"])
