@@ -148,7 +148,7 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     update_derived(m);
     RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, &r);
+    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, &r);
     touch(m);
     e->switched = r.switched;
     e->states_changed = r.states_changed;

@@ -42,10 +42,12 @@ typedef struct {
 } RodEvent;
 
 /* The event update at `time` (rod_event_update), recorded; z holds the indicators
- * at the event. False, with the reason in e->text, if the modes do not settle or
- * too many events fall on one instant. */
+ * at the event. With `floor_jumped` (the floor's speed changed by an input, not
+ * at a located v = 0) the rod slips the way its new relative velocity points,
+ * as at the start, and the rules go on from there. False, with the reason in
+ * e->text, if the modes do not settle or too many events fall on one instant. */
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      RodEvent *e);
+                      bool floor_jumped, RodEvent *e);
 
 /* NULL if r (restored from bytes) is a record this model can have, else the
  * name of the first variable that is not. */

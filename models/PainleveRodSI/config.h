@@ -76,7 +76,8 @@
     INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)      \
     INTERNAL("initial_event", run.initial_event, BOOLEAN)     \
     INTERNAL("instant", run.instant, REAL)                    \
-    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
+    INTERNAL("events_at_instant", run.events_at_instant, INTEGER) \
+    INTERNAL("v_floor_decided", v_floor_decided, REAL)
 
 /* Outputs beyond the states and derivatives. */
 enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_NOUT };
@@ -90,6 +91,7 @@ typedef struct {
     double y_floor, w_floor, v_floor, F_x, F_y, tau;
     double x[ROD_NX];
     RodRecord run;
+    double v_floor_decided; /* the belt speed the mode was last decided for */
     bool stale, partials_stale;
     RodParams rod;        /* alpha, mu, delta, epsilon and the loads in units of m g, m g l */
     double xs[ROD_NX];    /* the state in the paper's units, in the floor's frame */

@@ -228,6 +228,7 @@ void model_start(Model *m, double time)
 {
     update_derived(m);
     rod_record_start(&m->run, &m->rod, m->xs, time);
+    m->v_floor_decided = m->v_floor;
     touch(m);
 }
 
@@ -243,8 +244,11 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     const Scaling s = scaling(m);
     double xs[ROD_NX];
     memcpy(xs, m->xs, sizeof xs);
+    /* A belt that changed speed leaves the rod's own velocity as it was. */
+    const bool belt_jumped = m->v_floor != m->v_floor_decided;
+    m->v_floor_decided = m->v_floor;
     RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, &r);
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, &r);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
@@ -289,5 +293,6 @@ const char *model_implausible(const Model *m)
         const VariableInfo *info = model_variable(vr);
         if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
     }
+    if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
     return rod_record_implausible(&m->run);
 }
