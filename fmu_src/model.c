@@ -172,7 +172,7 @@ void model_decide_initial_mode(Model *m)
     touch(m);
 }
 
-void model_start(Model *m, double time)
+void model_start(Model *m, double time, char *text, size_t n)
 {
     model_decide_initial_mode(m);
     m->t_switch = m->t_stick_begin = m->t_stick_end = m->t_contact_begin = m->t_contact_end = time;
@@ -180,6 +180,7 @@ void model_start(Model *m, double time)
     m->initial_event = true;
     m->instant = -INFINITY;
     m->events_at_instant = 0;
+    snprintf(text, n, "initial mode contact = %d, mode = %+d", m->mode.contact, m->mode.slip);
 }
 
 void model_begin_integration(Model *m)
