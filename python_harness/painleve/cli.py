@@ -273,7 +273,8 @@ def cmd_couple(args):
         except MasterUnavailable as err:
             raise UsageError(f"painleve couple: {err}") from None
         except Exception as err:
-            raise RunError(f"painleve couple: the {args.master} run failed: {one_line(err)}; try a smaller --step") from None
+            raise RunError(f"painleve couple: the {args.master} run failed: {one_line(err)}; check the --set values "
+                           f"(a smaller --step keeps the explicit coupling stable)") from None
         seconds = time.monotonic() - start
         if args.ssp:
             shutil.copyfile(ssp, args.ssp)
@@ -287,10 +288,15 @@ def cmd_couple(args):
     on_rod, on_table = impulse_on_rod(r, setup), impulse_on_table(r, args.step)
     print(f"Rod on shaker table: {rod} + {table}, master {args.master} (Jacobi, zero-order hold), "
           f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
+    rv = setup.rod_values()
+    contact_time = math.sqrt(rv["m"] / rv["k"])
     print(f"rod: alpha = {d['alpha']:.4g}, epsilon = {d['epsilon']:.4g}, delta = {d['delta']:.4g}, mu = {d['mu']:.4g}; "
-          f"theta0 = {d['theta0']:.4g}, v0 = {d['v0']:.4g} sqrt(g l), phi0 = {d['phi0']:.4g} sqrt(g/l)")
+          f"theta0 = {d['theta0']:.4g}, v0 = {d['v0']:.4g} sqrt(g l), phi0 = {d['phi0']:.4g} sqrt(g/l); contact time "
+          f"scale sqrt(m/k) = {contact_time:.3g} s = {contact_time / args.step:.3g} h")
+    tv = float(np.sum(np.abs(np.diff(np.concatenate(([0.0], r["table.F_N"]))))))
     print(f"impulse of F_N over the run: on the rod {on_rod:.6g} N s (its momentum), on the table {on_table:.6g} N s "
-          f"(the inputs it held); difference {on_rod - on_table:+.3g} N s (O(h))")
+          f"(the inputs it held); difference {on_rod - on_table:+.3g} N s, a zero-order hold's error: at most "
+          f"h TV(F_N) = {args.step * tv:.3g} N s")
     print(f"at t = {args.stop:g}: rod y = {r['rod.y'][-1]:.6g} m, w = {r['rod.w'][-1]:.6g} m/s, "
           f"theta = {r['rod.theta'][-1]:.6g}; table z = {r['table.position'][-1]:.6g} m, "
           f"z' = {r['table.velocity'][-1]:.6g} m/s")

@@ -387,7 +387,7 @@ def _add_couple(sub):
     cp.add_argument("--master", choices=MASTERS, default="fmpy",
                     help="fmpy (fmpy.ssp), libcosim (libcosimpy) or ecos (ecospy); the last two are installed by "
                          "`bash run.sh test` (default %(default)s)")
-    cp.add_argument("--stop", type=positive, default=0.5, metavar="SECONDS", help="stop time (default %(default)s)")
+    cp.add_argument("--stop", type=positive, default=0.45, metavar="SECONDS", help="stop time (default %(default)s)")
     cp.add_argument("--step", type=positive, default=1e-4, metavar="SECONDS",
                     help="communication step h; the stop time must be a whole number of steps (default %(default)s)")
     cp.add_argument("--set", dest="start_values", type=start_value, action="append", default=[],

@@ -18,7 +18,7 @@ def coupled_figure(r, path, *, setup, title="", dpi=150):
     def series(name, start):
         return np.concatenate(([start], r[name]))
 
-    fig, (ax_y, ax_w, ax_f) = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    fig, (ax_y, ax_w, ax_n, ax_t) = plt.subplots(4, 1, figsize=(9, 11), sharex=True)
     ax_y.plot(t, 1e3 * series(f"{ROD}.y", rod["y"]), label="rod: contact end y")
     ax_y.plot(t, 1e3 * series(f"{TABLE}.position", table["position"]), label="table: surface z")
     ax_y.plot(t, 1e3 * series(f"{ROD}.y_cm", rod["y"] + rod["l"] * np.sin(rod["theta"])), ":",
@@ -29,13 +29,20 @@ def coupled_figure(r, path, *, setup, title="", dpi=150):
     ax_w.plot(t, series(f"{TABLE}.velocity", table["velocity"]), label="table: z'")
     ax_w.set_ylabel("vertical velocity [m/s]")
     ax_w.legend(loc="best", fontsize="small")
-    ax_f.plot(r["time"], r[f"{ROD}.F_N"], label="F_N on the rod (up): rod output")
-    ax_f.step(r["time"], -r[f"{TABLE}.F_N"], where="pre", label="-F_N on the table (down): held input")
-    ax_f.plot(r["time"], -r[f"{ROD}.F_T"], label="-F_T on the rod (along x): rod output")
-    ax_f.step(r["time"], r[f"{TABLE}.F_T"], where="pre", label="F_T on the table: held input")
-    ax_f.set_ylabel("force [N]")
-    ax_f.set_xlabel("time [s]")
-    ax_f.legend(loc="best", fontsize="small")
+    # Both sides of each force, in the same sign: on the rod as the rod computes it (its output at
+    # each communication point), on the table as the table held it (a step per communication step).
+    ax_n.plot(r["time"], r[f"{ROD}.F_N"], label="F_N on the rod, upwards (rod's output)")
+    ax_n.step(t, np.concatenate((r[f"{TABLE}.F_N"][:1], r[f"{TABLE}.F_N"])), where="post", linestyle="--",
+              label="F_N on the table, downwards (the input it held)")
+    ax_n.set_ylabel("normal force [N]")
+    ax_t.plot(r["time"], r[f"{ROD}.F_T"], label="F_T: on the rod -F_T along x (rod's output)")
+    ax_t.step(t, np.concatenate((r[f"{TABLE}.F_T"][:1], r[f"{TABLE}.F_T"])), where="post", linestyle="--",
+              label="F_T: on the table +F_T along x (the input it held)")
+    ax_t.set_ylabel("tangential force [N]")
+    ax_t.set_xlabel("time [s]")
+    for ax in (ax_n, ax_t):
+        ax.set_yscale("symlog", linthresh=1.0)      # the impact's kN beside the resting rod's N
+        ax.legend(loc="best", fontsize="small")
     if title:
         fig.suptitle(title, fontsize="medium")
     fig.tight_layout()

@@ -25,6 +25,12 @@ value as the FMU read it back after the step: what it held over [t_(k-1), t_k]).
 """
 from __future__ import annotations
 
+import contextlib
+import io
+import os
+import shutil
+import tempfile
+
 import numpy as np
 
 from .ssp import START_VALUES, parameter_set, start_values
@@ -66,7 +72,21 @@ def _inputs(ssp_path):
 def run_fmpy(ssp_path, stop_time, step, record):
     from fmpy.ssp.simulation import simulate_ssp
     n = steps_of(stop_time, step)
-    r = simulate_ssp(str(ssp_path), stop_time=stop_time, step_size=step, parameter_set=parameter_set(ssp_path))
+    pset = parameter_set(ssp_path)
+    # simulate_ssp unzips the archive and each FMU with tempfile.mkdtemp and removes them only when
+    # it ends normally; the FMUs' log goes to print. Both are kept here: the unzipped files in a
+    # directory of ours, removed whatever happens, the log to name an FMU's error.
+    log, scratch, saved = io.StringIO(), tempfile.mkdtemp(prefix="painleve-fmpy-ssp-"), tempfile.tempdir
+    try:
+        tempfile.tempdir = scratch
+        with contextlib.redirect_stdout(log):
+            r = simulate_ssp(str(ssp_path), stop_time=stop_time, step_size=step, parameter_set=pset)
+    except Exception as err:
+        errors = [line for line in log.getvalue().splitlines() if line.startswith(("[ERROR]", "[FATAL]"))]
+        raise RuntimeError(f"fmpy: {errors[-1].split('] ', 1)[1] if errors else err}") from None
+    finally:
+        tempfile.tempdir = saved
+        shutil.rmtree(scratch, ignore_errors=True)
     r = r[:n]                                        # a round-off in fmpy's sum of h may add a step
     missing = [name for name in record if name not in r.dtype.names]
     if missing:
@@ -90,7 +110,7 @@ def run_libcosim(ssp_path, stop_time, step, record):
     except ImportError as err:
         raise MasterUnavailable(f"libcosim: libcosimpy is not installed ({err}); "
                                 f"pip install -r tests/importers/requirements.txt") from None
-    log_output_level(CosimLogLevel.ERROR)
+    log_output_level(CosimLogLevel.FATAL)        # its errors come back through get_last_error_message
     n = steps_of(stop_time, step)
     step_ns = round(step * 1e9)
     if abs(step_ns * 1e-9 - step) > 1e-12 * step:
@@ -131,23 +151,34 @@ def run_ecos(ssp_path, stop_time, step, record):
     except (ImportError, OSError) as err:    # OSError: libecosc.so without Debian's libtbb12
         raise MasterUnavailable(f"ecos: ecospy does not load ({err}); pip install -r "
                                 f"tests/importers/requirements.txt (and apt-get install libtbb12)") from None
-    EcosLib.set_log_level("warn")
+    EcosLib.set_log_level("off")                 # its errors come back through get_last_error
     n = steps_of(stop_time, step)
     ids = [name.replace(".", "::", 1) for name in record]
     rows = np.zeros((n, len(record)))
     times = np.zeros(n)
+    # ecos unzips the archive into $TMPDIR/ecos_ssp_<uuid> and leaves it there: it gets a directory
+    # of ours, removed after the run.
+    scratch, saved = tempfile.mkdtemp(prefix="painleve-ecos-"), os.environ.get("TMPDIR")
+    os.environ["TMPDIR"] = scratch
     try:
-        sim = EcosSimulation(ssp_path=str(ssp_path), step_size=step)
-    except Exception as err:
-        raise RuntimeError(f"ecos: cannot load {ssp_path}: {err}") from None
-    with sim:
-        if not sim.init(parameter_set=START_VALUES):
-            raise RuntimeError(f"ecos: init failed: {EcosLib.get_last_error()}")
-        previous = [sim.get_real(i) for i in ids]      # t = 0, after the initial exchange
-        for k in range(n):
-            times[k] = sim.step()
-            rows[k] = [sim.get_real(i) for i in ids]
-        sim.terminate()
+        try:
+            sim = EcosSimulation(ssp_path=str(ssp_path), step_size=step)
+        except Exception as err:
+            raise RuntimeError(f"ecos: cannot load {ssp_path}: {err}") from None
+        with sim:
+            if not sim.init(parameter_set=START_VALUES):
+                raise RuntimeError(f"ecos: init failed: {EcosLib.get_last_error()}")
+            previous = [sim.get_real(i) for i in ids]      # t = 0, after the initial exchange
+            for k in range(n):
+                times[k] = sim.step()
+                rows[k] = [sim.get_real(i) for i in ids]
+            sim.terminate()
+    finally:
+        if saved is None:
+            os.environ.pop("TMPDIR", None)
+        else:
+            os.environ["TMPDIR"] = saved
+        shutil.rmtree(scratch, ignore_errors=True)
     columns = {name: rows[:, j] for j, name in enumerate(record)}
     # ecos reads an input back after the exchange that follows the step: the value for the next
     # step. The value held during step k is the one read after step k - 1 (after init for k = 1).
