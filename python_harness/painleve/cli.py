@@ -237,7 +237,7 @@ def cmd_couple(args):
 
     import numpy as np
     from .cli_parser import coupled_fmu
-    from .coupled import RECORD, Setup, impulse_on_rod, impulse_on_table, write_coupled_ssp
+    from .coupled import RECORD, ROD_INPUTS, TABLE_INPUTS, Setup, impulse_on_rod, impulse_on_table, write_coupled_ssp
     from .coupled_figure import coupled_figure
     from .masters import MasterUnavailable, run, steps_of
     from .ssp_check import check_ssp
@@ -245,10 +245,11 @@ def cmd_couple(args):
     table, table_vars = coupled_fmu(args.table, "table")
     setup = Setup()
     for comp, name, value in args.start_values:
-        variables = rod_vars if comp == "rod" else table_vars
+        variables, connected = (rod_vars, ROD_INPUTS) if comp == "rod" else (table_vars, TABLE_INPUTS)
+        settable = sorted(n for n, w in variables.items()
+                          if (w.causality == "parameter" or w.initial == "exact") and n not in connected)
         v = variables.get(name)
-        if v is None or not (v.causality == "parameter" or v.initial == "exact"):
-            settable = sorted(n for n, w in variables.items() if w.causality == "parameter" or w.initial == "exact")
+        if name not in settable:
             raise UsageError(f"painleve couple: --set {comp}.{name}: the {comp} has no {'such variable' if v is None else 'start value to set there'}; "
                              f"it takes {', '.join(settable)}")
         (setup.rod if comp == "rod" else setup.table)[name] = value

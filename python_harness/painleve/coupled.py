@@ -94,12 +94,13 @@ def impulse_on_table(r, step):
 
 
 def impulse_on_rod(r, setup):
-    """What the floor gave the rod (upwards), from the rod's momentum: m (vy_cm(T) - vy_cm(0)) + m g T,
-    vy_cm(0) = w(0) + l cos(theta(0)) phi(0) by the rod's kinematics (centre of mass at
-    y + l sin theta). No applied force is connected, F_y = 0."""
+    """What the floor gave the rod (upwards), from the rod's momentum: m (vy_cm(T) - vy_cm(0)) + m g T
+    - F_y T, vy_cm(0) = w(0) + l cos(theta(0)) phi(0) by the rod's kinematics (centre of mass at
+    y + l sin theta); the applied force F_y is not connected: its start value holds (0 by default)."""
     p = setup.rod_values()
     vy0 = p["w"] + p["l"] * math.cos(p["theta"]) * p["phi"]
-    return p["m"] * (r[f"{ROD}.vy_cm"][-1] - vy0) + p["m"] * p["g"] * r["time"][-1]
+    T = r["time"][-1]
+    return p["m"] * (r[f"{ROD}.vy_cm"][-1] - vy0) + p["m"] * p["g"] * T - p.get("F_y", 0.0) * T
 
 
 def table_momentum_impulse(r, setup):
