@@ -216,6 +216,10 @@ def test_the_other_masters_give_fmpys_results_to_the_steps_order(master, rod_fmu
     differences = gap(on_grid(theirs, 2 * h), ours)
     for name in STATES:
         assert differences[name] <= step_error[name], (name, differences[name], step_error[name])
+        # closer still: the same scheme on the same FMUs; the initial outputs here are 0 (the rod
+        # starts unloaded at y = 0, the table at rest), so fmpy's zero-initialized connectors are
+        # the others' first exchange, and only round-off differs
+        assert differences[name] <= 1e-9 * (1 + np.max(np.abs(ours[name]))), (name, differences[name])
     # what the table held and what the rod felt: Newton's third law through this master too (the
     # table's held F_N: ecos reads the rod's F_N back after the next inputs are set, see masters)
     tv = total_variation(theirs, "table.F_N", 0.0)
