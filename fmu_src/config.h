@@ -7,6 +7,7 @@
 
 #include "rod.h"
 #include "rod_partials.h"
+#include "rod_record.h"
 
 #define MODEL_IDENTIFIER PainleveRod
 #define MODEL_NAME "PainleveRod"
@@ -43,28 +44,28 @@
     VARIABLE(F_N, "F_N", REAL, CALCULATED, out[ROD_OUT_F_N], 0, 0)                                 \
     VARIABLE(F_T, "F_T", REAL, CALCULATED, out[ROD_OUT_F_T], 0, 0)                                 \
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[ROD_OUT_ENERGY], 0, 0)                        \
-    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, t_switch, 0, 0)                                 \
-    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, t_stick_begin, 0, 0)                  \
-    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, t_stick_end, 0, 0)                        \
-    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, t_contact_begin, 0, 0)            \
-    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, t_contact_end, 0, 0)                  \
+    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, run.t_switch, 0, 0)                                 \
+    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, run.t_stick_begin, 0, 0)                  \
+    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, run.t_stick_end, 0, 0)                        \
+    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, run.t_contact_begin, 0, 0)            \
+    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, run.t_contact_end, 0, 0)                  \
     VARIABLE(KAPPA, "kappa", REAL, PARAMETER, params.kappa, 0, 1e6)                                \
     VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
-    VARIABLE(MODE, "mode", INTEGER, DISCRETE, mode.slip, 0, 0)                                     \
-    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, switches, 0, 0)                              \
-    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, sticks, 0, 0)                                    \
-    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, mode.contact, 0, 0)
+    VARIABLE(MODE, "mode", INTEGER, DISCRETE, run.mode.slip, 0, 0)                                     \
+    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, run.switches, 0, 0)                              \
+    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, run.sticks, 0, 0)                                    \
+    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, run.mode.contact, 0, 0)
 
 /* The model's data beyond its variables that an FMU state must carry
  * (the event log's reference and the event guard): INTERNAL(name, field, type). */
 #define MODEL_INTERNALS(INTERNAL)                         \
-    INTERNAL("z_at_restart0", z_at_restart[0], REAL)      \
-    INTERNAL("z_at_restart1", z_at_restart[1], REAL)      \
-    INTERNAL("z_at_restart2", z_at_restart[2], REAL)      \
-    INTERNAL("z_at_restart3", z_at_restart[3], REAL)      \
-    INTERNAL("initial_event", initial_event, BOOLEAN)     \
-    INTERNAL("instant", instant, REAL)                    \
-    INTERNAL("events_at_instant", events_at_instant, INTEGER)
+    INTERNAL("z_at_restart0", run.z_at_restart[0], REAL)      \
+    INTERNAL("z_at_restart1", run.z_at_restart[1], REAL)      \
+    INTERNAL("z_at_restart2", run.z_at_restart[2], REAL)      \
+    INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)      \
+    INTERNAL("initial_event", run.initial_event, BOOLEAN)     \
+    INTERNAL("instant", run.instant, REAL)                    \
+    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
 
 /* The model's data: parameters, states, modes, what the events record, and
  * derived values and partial derivatives cached until a change marks them stale. Plain data with no
@@ -72,14 +73,7 @@
 typedef struct {
     RodParams params;
     double x[ROD_NX];
-    RodMode mode;
-    double t_switch, t_stick_begin, t_stick_end; /* times of the last switch, stick start, stick end */
-    double t_contact_begin, t_contact_end;       /* times the last contact began and ended */
-    int switches, sticks;                        /* mode switches and sticks since initialization */
-    double z_at_restart[ROD_NZ];                 /* indicators where integration last (re)started */
-    bool initial_event;                          /* the event iteration right after initialization */
-    double instant;                              /* time of the current run of events at one instant */
-    int events_at_instant;
+    RodRecord run;                               /* the mode and what its events recorded */
     bool stale, partials_stale;
     double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT];
     RodPartials partials;

@@ -49,6 +49,13 @@ const char *model_check(unsigned int vr, double value);
 void model_set(Model *m, unsigned int vr, double value);
 double model_get(Model *m, unsigned int vr);
 
+/* For the models' own files (model_table.c, from config.h's list): a variable's
+ * field written (settable kinds only) and read, and the range check every
+ * settable variable gets (NULL if value is finite and within [min, max]). */
+void model_assign(Model *m, unsigned int vr, double value);
+double model_stored(const Model *m, unsigned int vr);
+const char *model_check_range(unsigned int vr, double value);
+
 /* The model becomes `saved` (an FMU state restored). */
 void model_restore(Model *m, const Model *saved);
 

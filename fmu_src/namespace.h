@@ -37,8 +37,20 @@
 #define rod_normal_force NAMESPACED(rod_normal_force)
 #define rod_partials NAMESPACED(rod_partials)
 
+/* models/PainleveRodSI/rod_si_partials.c */
+#define si_partial NAMESPACED(si_partial)
+
+/* rod_record.c: the event iteration of a rod model */
+#define rod_initial_mode NAMESPACED(rod_initial_mode)
+#define rod_record_event NAMESPACED(rod_record_event)
+#define rod_record_implausible NAMESPACED(rod_record_implausible)
+#define rod_record_new NAMESPACED(rod_record_new)
+#define rod_record_start NAMESPACED(rod_record_start)
+
 /* model.c: the model interface */
+#define model_assign NAMESPACED(model_assign)
 #define model_begin_integration NAMESPACED(model_begin_integration)
+#define model_check_range NAMESPACED(model_check_range)
 #define model_check NAMESPACED(model_check)
 #define model_decide_initial_mode NAMESPACED(model_decide_initial_mode)
 #define model_derivatives_at NAMESPACED(model_derivatives_at)
@@ -62,6 +74,7 @@
 #define model_settable NAMESPACED(model_settable)
 #define model_start NAMESPACED(model_start)
 #define model_state_vr NAMESPACED(model_state_vr)
+#define model_stored NAMESPACED(model_stored)
 #define model_variable NAMESPACED(model_variable)
 
 /* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */

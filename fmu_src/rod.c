@@ -35,8 +35,8 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
     const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
     const double k = 1 + al * s * s;
     RodCoeffs r;
-    r.a = -phi * phi * c;                       /* eq coeffs */
-    r.b = -1 + phi * phi * s;
+    r.a = -phi * phi * c + p->f_x - al * s * p->tau;     /* eq coeffs, with the applied loads */
+    r.b = -1 + phi * phi * s + p->f_y - al * c * p->tau;
     r.q_plus = al * s * c - mu * k;
     r.q_minus = al * s * c + mu * k;
     r.p_plus = 1 + al * c * c - mu * al * s * c;
@@ -138,7 +138,7 @@ void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], doub
     dx[ROD_THETA] = x[ROD_PHI];
     dx[ROD_V] = sticking(m) ? 0 : k.a + g.v * F;   /* v' = 0 exactly on the sticking set */
     dx[ROD_W] = k.b + g.w_a * k.a + g.w * F;
-    dx[ROD_PHI] = g.phi_a * k.a + g.phi * F;
+    dx[ROD_PHI] = g.phi_a * k.a + g.phi * F + p->alpha * p->tau;
 }
 
 /* d/dtheta of the coefficients in RodCoeffs (phi enters a and b only). */
@@ -147,8 +147,8 @@ static RodCoeffs coeffs_dtheta(const RodParams *p, double theta, double phi)
     const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
     const double k = 1 + al * s * s, dk = 2 * al * s * c, c2s2 = c * c - s * s;
     RodCoeffs d;
-    d.a = phi * phi * s;
-    d.b = phi * phi * c;
+    d.a = phi * phi * s - al * c * p->tau;
+    d.b = phi * phi * c + al * s * p->tau;
     d.q_plus = al * c2s2 - mu * dk;
     d.q_minus = al * c2s2 + mu * dk;
     d.p_plus = -2 * al * s * c - mu * al * c2s2;

@@ -26,6 +26,10 @@ typedef struct {
     double epsilon; /* compliance, > 0: stiffness epsilon^-2 */
     double kappa;   /* spring stiffening, >= 0: stiffness 1 + 2 kappa d at scaled penetration d */
     double beta;    /* damping growth, >= 0: damping delta (1 + beta d) (Hunt-Crossley-like) */
+    /* Applied loads, in units of m g and m g l (0 in the paper): a force (f_x, f_y) on the
+     * centre of mass and a torque tau in theta's sense. They enter the paper's a and b
+     * (a += f_x - alpha sin tau, b += f_y - alpha cos tau) and phi' (+= alpha tau). */
+    double f_x, f_y, tau;
 } RodParams;
 
 typedef struct {

@@ -10,13 +10,13 @@
  *   sticking (contact, sg = 0):
  *     v' = 0,  w' = b + A_w a + S_w F,  phi' = A_phi a + S_phi F
  * with (eq coeffs, eq Sw)
- *   a = -phi^2 cs,  b = -1 + phi^2 sn,
+ *   a = -phi^2 cs + f_x - al sn tau,  b = -1 + phi^2 sn + f_y - al cs tau  (phi' also gains al tau),
  *   q_sg = al sn cs - sg mu k,  p_sg = 1 + al cs^2 - sg mu al sn cs,  c_sg = -al (cs - sg mu sn),
  *   S_w = (1 + al)/k,  S_phi = -al cs/k,  A_w = -al sn cs/k,  A_phi = al sn/k,
  * and, in contact, F = h(y/eps, w)/eps with the compliance law h of rod.h (the
  * linear law: -y/eps^2 - delta w/eps; 0 in flight).
- * Parameters enter only through the gains (alpha, mu) and through F (delta, eps, kappa, beta);
- * a and b depend on the states alone. */
+ * Parameters enter through the gains (alpha, mu), through F (delta, eps, kappa, beta) and,
+ * with a torque, through the load terms of a, b and phi' (alpha). */
 #include "rod_partials.h"
 
 #include <math.h>
@@ -75,8 +75,9 @@ static Gains gains(const RodCoeffs *c, RodMode m)
     return (Gains){ c->q_minus, c->p_minus, c->c_minus, 0, 0 };
 }
 
-/* d(state derivatives)/d(parameters): with a, b free of parameters,
- *   d rhs/dP = (d gain/dP)(a or F) + gain dF/dP. */
+/* d(state derivatives)/d(parameters):
+ *   d rhs/dP = (d gain/dP)(a or F) + gain dF/dP,
+ * plus, for alpha, the torque's terms: da/dalpha = -sn tau, db/dalpha = -cs tau, and phi' = ... + al tau. */
 static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX], double dx_p[ROD_NX][ROD_NP])
 {
     const RodCoeffs c = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
@@ -105,6 +106,26 @@ static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX]
     dx_p[ROD_PHI][ROD_P_MU] = gm.phi_a * c.a + gm.phi * F.F;
     dx_p[ROD_PHI][ROD_P_DELTA] = g.phi * F.delta;
     dx_p[ROD_PHI][ROD_P_EPSILON] = g.phi * F.eps;
+    const double sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), a_alpha = -sn * p->tau, b_alpha = -cs * p->tau;
+    if (!stick) dx_p[ROD_V][ROD_P_ALPHA] += a_alpha;
+    dx_p[ROD_W][ROD_P_ALPHA] += b_alpha + g.w_a * a_alpha;
+    dx_p[ROD_PHI][ROD_P_ALPHA] += g.phi_a * a_alpha + p->tau;
+}
+
+/* d(state derivatives)/d(loads): da/d(f_x, f_y, tau) = (1, 0, -al sn), db/d(.) = (0, 1, -al cs),
+ * and phi' holds al tau itself. */
+static void derivatives_dl(const RodParams *p, RodMode m, const double x[ROD_NX], double dx_l[ROD_NX][ROD_NL])
+{
+    const RodCoeffs c = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    const Gains g = gains(&c, m);
+    const double sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), al = p->alpha;
+    const double a_l[ROD_NL] = { 1, 0, -al * sn }, b_l[ROD_NL] = { 0, 1, -al * cs };
+    const bool stick = m.contact && m.slip == 0;
+    for (int j = 0; j < ROD_NL; ++j) {
+        dx_l[ROD_V][j] = stick ? 0 : a_l[j];
+        dx_l[ROD_W][j] = b_l[j] + g.w_a * a_l[j];
+        dx_l[ROD_PHI][j] = g.phi_a * a_l[j] + (j == ROD_L_TAU ? al : 0);
+    }
 }
 
 /* F_N = F (rod_normal_force). */
@@ -122,11 +143,12 @@ static void normal_force_partials(const RodParams *p, RodMode m, const double x[
 
 /* F_T (rod_friction_force): 0 in flight; sg mu F while slipping; while
  * sticking the force that holds v' = 0, F_T = (a + al sn cs F)/k, whence
- *   dF_T/dtheta = (phi^2 sn + al (cs^2 - sn^2) F)/k - F_T (2 al sn cs)/k,
+ *   dF_T/dtheta = (phi^2 sn - al cs tau + al (cs^2 - sn^2) F)/k - F_T (2 al sn cs)/k,
  *   dF_T/dphi = -2 phi cs/k,  dF_T/d(y, w, delta, eps) = al sn cs dF/d(.)/k,
- *   dF_T/dalpha = (sn cs F - F_T sn^2)/k,  dF_T/dmu = 0. */
+ *   dF_T/dalpha = (sn cs F - sn tau - F_T sn^2)/k,  dF_T/dmu = 0,
+ *   dF_T/d(f_x, f_y, tau) = (1, 0, -al sn)/k. */
 static void friction_force_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
-                                    double d_p[ROD_NP])
+                                    double d_p[ROD_NP], double d_l[ROD_NL])
 {
     if (!m.contact) return;
     const NormalForce F = normal_force(p, m, x);
@@ -144,11 +166,13 @@ static void friction_force_partials(const RodParams *p, RodMode m, const double 
     const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha;
     const double sn = sin(th), cs = cos(th), k = 1 + al * sn * sn, ssc = al * sn * cs / k;
     const double FT = rod_friction_force(p, m, x);
-    d_x[ROD_THETA] = (phi * phi * sn + al * (cs * cs - sn * sn) * F.F) / k - FT * 2 * al * sn * cs / k;
+    d_x[ROD_THETA] = (phi * phi * sn - al * cs * p->tau + al * (cs * cs - sn * sn) * F.F) / k - FT * 2 * al * sn * cs / k;
     d_x[ROD_PHI] = -2 * phi * cs / k;
     d_x[ROD_Y] = ssc * F.y;
     d_x[ROD_W] = ssc * F.w;
-    d_p[ROD_P_ALPHA] = (sn * cs * F.F - FT * sn * sn) / k;
+    d_p[ROD_P_ALPHA] = (sn * cs * F.F - sn * p->tau - FT * sn * sn) / k;
+    d_l[ROD_L_FX] = 1 / k;
+    d_l[ROD_L_TAU] = -al * sn / k;
     d_p[ROD_P_DELTA] = ssc * F.delta;
     d_p[ROD_P_EPSILON] = ssc * F.eps;
     d_p[ROD_P_KAPPA] = ssc * F.kappa;
@@ -183,7 +207,8 @@ void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPart
     memset(d, 0, sizeof *d);   /* every pair not written below is structurally 0 */
     rod_jacobian(p, m, x, d->dx_x);
     derivatives_dp(p, m, x, d->dx_p);
+    derivatives_dl(p, m, x, d->dx_l);
     normal_force_partials(p, m, x, d->out_x[ROD_OUT_F_N], d->out_p[ROD_OUT_F_N]);
-    friction_force_partials(p, m, x, d->out_x[ROD_OUT_F_T], d->out_p[ROD_OUT_F_T]);
+    friction_force_partials(p, m, x, d->out_x[ROD_OUT_F_T], d->out_p[ROD_OUT_F_T], d->out_l[ROD_OUT_F_T]);
     energy_partials(p, m, x, d->out_x[ROD_OUT_ENERGY], d->out_p[ROD_OUT_ENERGY]);
 }

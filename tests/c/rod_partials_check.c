@@ -1,6 +1,6 @@
 /* rod_partials against central finite differences of the functions it
  * differentiates (rod_derivatives, rod_normal_force, rod_friction_force,
- * rod_energy), at random states and parameters, in every mode: flight (both
+ * rod_energy), at random states, parameters and applied loads, in every mode: flight (both
  * slip signs), contact slipping forward and backward, sticking. The mode is
  * held fixed, so each function is one smooth branch and the differences
  * never cross a switching surface. Also: dx_x is rod_jacobian, bit for bit.
@@ -14,7 +14,7 @@
 #include "rod_partials.h"
 
 #define NF (ROD_NX + ROD_NOUT) /* state derivatives, then F_N, F_T, energy */
-#define NK (ROD_NX + ROD_NP)   /* states, then alpha, mu, delta, epsilon, kappa, beta */
+#define NK (ROD_NX + ROD_NP + ROD_NL) /* states, alpha, mu, delta, epsilon, kappa, beta, then f_x, f_y, tau */
 #define POINTS_PER_MODE 400
 #define REL_TOL 1e-6
 
@@ -36,7 +36,10 @@ static double *param(RodParams *p, int j)
     case ROD_P_DELTA: return &p->delta;
     case ROD_P_EPSILON: return &p->epsilon;
     case ROD_P_KAPPA: return &p->kappa;
-    default: return &p->beta;
+    case ROD_P_BETA: return &p->beta;
+    case ROD_NP + ROD_L_FX: return &p->f_x;
+    case ROD_NP + ROD_L_FY: return &p->f_y;
+    default: return &p->tau;
     }
 }
 
@@ -50,8 +53,10 @@ static void values(const RodParams *p, RodMode m, const double x[ROD_NX], double
 
 static double analytic(const RodPartials *d, int i, int j)
 {
-    if (i < ROD_NX) return j < ROD_NX ? d->dx_x[i][j] : d->dx_p[i][j - ROD_NX];
-    return j < ROD_NX ? d->out_x[i - ROD_NX][j] : d->out_p[i - ROD_NX][j - ROD_NX];
+    const int l = j - ROD_NX - ROD_NP;   /* a load's column */
+    if (i < ROD_NX) return j < ROD_NX ? d->dx_x[i][j] : l < 0 ? d->dx_p[i][j - ROD_NX] : d->dx_l[i][l];
+    i -= ROD_NX;
+    return j < ROD_NX ? d->out_x[i][j] : l < 0 ? d->out_p[i][j - ROD_NX] : d->out_l[i][l];
 }
 
 /* Column j of the central difference with step h, in the known's own scale n:
@@ -74,16 +79,21 @@ static void central_difference(RodParams p, RodMode m, const double x0[ROD_NX], 
 static const char *const ROW[NF] = { "der(x)", "der(v)", "der(y)", "der(w)", "der(theta)", "der(phi)",
                                      "F_N", "F_T", "energy" };
 static const char *const COL[NK] = { "x", "v", "y", "w", "theta", "phi", "alpha", "mu", "delta", "epsilon",
-                                     "kappa", "beta" };
+                                     "kappa", "beta", "f_x", "f_y", "tau" };
 
 /* One random point: every entry, scaled by its known's scale n_j, within REL_TOL of the
  * difference, plus a floor far above the differences' round-off (~1e-11 |f|). */
 static int check_point(RodMode m, const char *mode_name, long *entries)
 {
     /* kappa, beta up to 30: at penetrations d = -y/eps ~ 3 eps their terms are O(1) parts of h */
-    RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3), uniform(0, 30), uniform(0, 30) };
+    RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3), uniform(0, 30), uniform(0, 30), 0, 0, 0 };
     if (uniform(0, 1) < 0.1) p.delta = 0; /* undamped contacts too */
     if (uniform(0, 1) < 0.2) p.kappa = p.beta = 0; /* the paper's linear law too */
+    if (uniform(0, 1) < 0.7) {                       /* applied loads (the SI model's inputs) */
+        p.f_x = uniform(-2, 2);
+        p.f_y = uniform(-2, 2);
+        p.tau = uniform(-2, 2);
+    }
     const double eps = p.epsilon;
     double x[ROD_NX] = { uniform(-5, 5), uniform(-2, 2), eps * eps * uniform(-3, 3), eps * uniform(-3, 3),
                          uniform(-3.2, 3.2), uniform(-2.5, 2.5) };
@@ -117,8 +127,9 @@ static int check_point(RodMode m, const char *mode_name, long *entries)
             ++*entries;
             if (!(fabs(a - fd) <= REL_TOL * fabs(fd) + 1e-8 * scale[i])) {
                 printf("FAIL %s: d %s / d %s = %.12g, central difference %.12g (x = %g %g %g %g %g %g; alpha %g mu %g "
-                       "delta %g eps %g kappa %g beta %g)\n", mode_name, ROW[i], COL[j], a / n[j], fd / n[j], x[0], x[1],
-                       x[2], x[3], x[4], x[5], p.alpha, p.mu, p.delta, p.epsilon, p.kappa, p.beta);
+                       "delta %g eps %g kappa %g beta %g; loads %g %g %g)\n", mode_name, ROW[i], COL[j], a / n[j],
+                       fd / n[j], x[0], x[1], x[2], x[3], x[4], x[5], p.alpha, p.mu, p.delta, p.epsilon, p.kappa, p.beta,
+                       p.f_x, p.f_y, p.tau);
                 ++failed;
             }
         }

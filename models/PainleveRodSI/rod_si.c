@@ -1,0 +1,298 @@
+/* PainleveRodSI on the model interface (model.h): the rod of rod.c in SI
+ * units, driven by a moving floor and applied loads (docs/si_model.md).
+ *
+ * The model keeps SI states: the contact end (x, y), its velocity (v, w), theta
+ * and phi. Everything physical is evaluated by rod.c on the paper's
+ * dimensionless rod in the floor's frame: with the length l, the time
+ * T = sqrt(l/g), the speed U = sqrt(g l) and the force m g,
+ *   xs = (x/l, (v - v_floor)/U, (y - y_floor)/l, (w - w_floor)/U, theta, phi T),
+ *   alpha = m l^2/J, epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k),
+ *   loads f_x = F_x/(m g), f_y = F_y/(m g), tau/(m g l).
+ * The floor moves vertically with the inputs y_floor, w_floor and horizontally at
+ * the belt speed v_floor, piecewise constant (a jump is an event), so the
+ * floor's frame is inertial horizontally: v' = g v_s' and, sticking, v = v_floor
+ * exactly. Vertically the floor enters only through the gap and the relative
+ * velocity of the contact law, so w' = g w_s' whatever the floor's acceleration. */
+#include "model.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "model_dependencies.h"
+#include "rod_si_partials.h"
+
+/* ------------------------------------------------------------ scaling */
+
+typedef struct {
+    double scale[ROD_NX];  /* x_j = offset_j + scale_j xs_j */
+    double offset[ROD_NX];
+    double rate[ROD_NX];   /* der(x_j) = rate_j der(xs_j) for v, w, phi: g, g, g/l */
+} Scaling;
+
+static Scaling scaling(const Model *m)
+{
+    const double U = sqrt(m->g * m->l), per_T = sqrt(m->g / m->l);
+    return (Scaling){ .scale = { m->l, U, m->l, U, 1, per_T },
+                      .offset = { 0, m->v_floor, m->y_floor, m->w_floor, 0, 0 },
+                      .rate = { 0, m->g, 0, m->g, 0, m->g / m->l } };
+}
+
+static RodParams rod_params(const Model *m)
+{
+    const double mg = m->m * m->g;
+    return (RodParams){ .alpha = m->m * m->l * m->l / m->J, .mu = m->mu, .delta = m->c / sqrt(m->m * m->k),
+                        .epsilon = sqrt(mg / (m->k * m->l)), .kappa = 0, .beta = 0,
+                        .f_x = m->F_x / mg, .f_y = m->F_y / mg, .tau = m->tau / (mg * m->l) };
+}
+
+static void to_rod(const Scaling *s, const double x[ROD_NX], double xs[ROD_NX])
+{
+    for (int j = 0; j < ROD_NX; ++j) xs[j] = (x[j] - s->offset[j]) / s->scale[j];
+}
+
+/* The SI right-hand side from the rod's: der(x) = v, der(y) = w, der(theta) = phi
+ * in the ground's frame, accelerations scaled. */
+static void derivatives(const Model *m, const RodParams *p, const Scaling *s, const double x[ROD_NX],
+                        double dx[ROD_NX])
+{
+    double xs[ROD_NX], dxs[ROD_NX];
+    to_rod(s, x, xs);
+    rod_derivatives(p, m->run.mode, xs, dxs);
+    dx[ROD_X] = x[ROD_V];
+    dx[ROD_Y] = x[ROD_W];
+    dx[ROD_THETA] = x[ROD_PHI];
+    for (int j = ROD_V; j <= ROD_PHI; j += 2) dx[j] = s->rate[j] * dxs[j];
+}
+
+/* ------------------------------------------------------------ variables */
+
+void model_reset(Model *m)
+{
+    /* A uniform rod of 1 kg and 1 m (alpha = 3) on a stiff, damped floor with mu = 3:
+     * epsilon ~ 1e-3, delta ~ 1, the paper's Theorem 1 regime. */
+    *m = (Model){ .m = 1, .l = 0.5, .J = 1.0 / 12, .g = 9.81, .k = 2e7, .c = 4500, .mu = 3,
+                  .x = { [ROD_X] = 0, [ROD_V] = 2, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 2 },
+                  .run = rod_record_new(),
+                  .stale = true,
+                  .partials_stale = true };
+}
+
+const char *model_check(unsigned int vr, double value)
+{
+    return model_check_range(vr, value);
+}
+
+static void touch(Model *m)
+{
+    m->stale = m->partials_stale = true;
+}
+
+void model_set(Model *m, unsigned int vr, double value)
+{
+    model_assign(m, vr, value);
+    touch(m);
+}
+
+void model_restore(Model *m, const Model *saved)
+{
+    *m = *saved;
+    touch(m);
+}
+
+/* Mechanical energy in the ground's frame plus the contact spring's while it
+ * pushes: 1/2 m |V_cm|^2 + 1/2 J phi^2 + m g y_cm + 1/2 k gap^2. */
+static void outputs(Model *m)
+{
+    const double *x = m->x, l = m->l, sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), phi = x[ROD_PHI];
+    const double mg = m->m * m->g, gap = x[ROD_Y] - m->y_floor;
+    double *out = m->out;
+    out[SI_F_N] = mg * rod_normal_force(&m->rod, m->run.mode, m->xs);
+    out[SI_F_T] = mg * rod_friction_force(&m->rod, m->run.mode, m->xs);
+    out[SI_X_CM] = x[ROD_X] - l * cs;
+    out[SI_Y_CM] = x[ROD_Y] + l * sn;
+    out[SI_VX_CM] = x[ROD_V] + l * phi * sn;
+    out[SI_VY_CM] = x[ROD_W] + l * phi * cs;
+    out[SI_GAP] = gap;
+    out[SI_SLIP] = x[ROD_V] - m->v_floor;
+    const double spring = m->run.mode.contact ? 0.5 * m->k * gap * gap : 0.0;
+    out[SI_ENERGY] = 0.5 * m->m * (out[SI_VX_CM] * out[SI_VX_CM] + out[SI_VY_CM] * out[SI_VY_CM]) +
+                     0.5 * m->J * phi * phi + mg * out[SI_Y_CM] + spring;
+}
+
+static void update_derived(Model *m)
+{
+    if (!m->stale) return;
+    const Scaling s = scaling(m);
+    m->rod = rod_params(m);
+    to_rod(&s, m->x, m->xs);
+    derivatives(m, &m->rod, &s, m->x, m->dx);
+    rod_event_indicators(&m->rod, m->run.mode, m->xs, m->z);
+    outputs(m);
+    m->stale = false;
+}
+
+double model_get(Model *m, unsigned int vr)
+{
+    update_derived(m);
+    return model_stored(m, vr);
+}
+
+/* ---------------------------------------------------- continuous states */
+
+unsigned int model_state_vr(size_t i)
+{
+    return VR_X + (unsigned int)i;
+}
+
+void model_get_states(const Model *m, double x[MODEL_NX])
+{
+    memcpy(x, m->x, sizeof m->x);
+}
+
+void model_set_states(Model *m, const double x[MODEL_NX])
+{
+    memcpy(m->x, x, sizeof m->x);
+    touch(m);
+}
+
+void model_get_derivatives(Model *m, double dx[MODEL_NX])
+{
+    update_derived(m);
+    memcpy(dx, m->dx, sizeof m->dx);
+}
+
+void model_get_indicators(Model *m, double z[])
+{
+    update_derived(m);
+    memcpy(z, m->z, sizeof m->z);
+}
+
+/* The rod's nominals (the contact's y ~ eps^2, w ~ eps) in SI units. */
+void model_get_nominals(const Model *m, double nominal[MODEL_NX])
+{
+    const Scaling s = scaling(m);
+    const RodParams p = rod_params(m);
+    rod_nominals(&p, nominal);
+    for (int j = 0; j < ROD_NX; ++j) nominal[j] *= s.scale[j];
+}
+
+void model_set_time(Model *m, double time)
+{
+    (void)m, (void)time;   /* the inputs carry all the time dependence */
+}
+
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
+{
+    (void)time;
+    const Scaling s = scaling(m);
+    const RodParams p = rod_params(m);
+    derivatives(m, &p, &s, x, dx);
+}
+
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
+{
+    (void)time;
+    const Scaling s = scaling(m);
+    const RodParams p = rod_params(m);
+    double xs[ROD_NX];
+    to_rod(&s, x, xs);
+    rod_event_indicators(&p, m->run.mode, xs, z);
+}
+
+/* d der(x_i)/d x_j = rate_i J_s[i][j]/scale_j for the accelerations (v, w, phi:
+ * the odd rows); the kinematic rows der(x) = v, der(y) = w, der(theta) = phi. */
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
+{
+    (void)time;
+    const Scaling s = scaling(m);
+    const RodParams p = rod_params(m);
+    double xs[ROD_NX];
+    to_rod(&s, x, xs);
+    rod_jacobian(&p, m->run.mode, xs, J);
+    for (int i = 0; i < ROD_NX; ++i)
+        for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? s.rate[i] * J[i][j] / s.scale[j] : 0);
+    J[ROD_X][ROD_V] = J[ROD_Y][ROD_W] = J[ROD_THETA][ROD_PHI] = 1;
+}
+
+/* ------------------------------------------------------- modes, events */
+
+void model_decide_initial_mode(Model *m)
+{
+    update_derived(m);
+    m->run.mode = rod_initial_mode(&m->rod, m->xs);
+    touch(m);
+}
+
+void model_start(Model *m, double time)
+{
+    update_derived(m);
+    rod_record_start(&m->run, &m->rod, m->xs, time);
+    m->v_floor_decided = m->v_floor;
+    touch(m);
+}
+
+void model_begin_integration(Model *m)
+{
+    update_derived(m);
+    memcpy(m->run.z_at_restart, m->z, sizeof m->z);
+}
+
+bool model_event_update(Model *m, double time, ModelEvent *e)
+{
+    update_derived(m);
+    const Scaling s = scaling(m);
+    double xs[ROD_NX];
+    memcpy(xs, m->xs, sizeof xs);
+    /* A belt that changed speed leaves the rod's own velocity as it was. */
+    const bool belt_jumped = m->v_floor != m->v_floor_decided;
+    m->v_floor_decided = m->v_floor;
+    RodEvent r;
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, &r);
+    /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
+    for (int j = 0; j < ROD_NX; ++j)
+        if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
+    touch(m);
+    e->switched = r.switched;
+    e->states_changed = r.states_changed;
+    snprintf(e->text, sizeof e->text, "%s", r.text);
+    return ok;
+}
+
+/* ------------------------------------------------ partial derivatives */
+
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
+    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
+    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
+    if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
+    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
+        *value = unknown == known;
+        return NULL;
+    }
+    /* A pair the model description does not declare is 0 by the structure of the
+     * equations; the chain rule below would give round-off there. */
+    if (!model_depends(unknown, known)) {
+        *value = 0;
+        return NULL;
+    }
+    update_derived(m);
+    if (m->partials_stale) {
+        rod_partials(&m->rod, m->run.mode, m->xs, &m->partials);
+        m->partials_stale = false;
+    }
+    *value = si_partial(m, unknown, known);
+    return NULL;
+}
+
+/* ------------------------------------------------------ FMU state fields */
+
+const char *model_implausible(const Model *m)
+{
+    for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
+        const VariableInfo *info = model_variable(vr);
+        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
+    }
+    if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
+    return rod_record_implausible(&m->run);
+}
