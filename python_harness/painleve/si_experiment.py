@@ -76,7 +76,7 @@ class SIExperiment(Experiment):
                  output_interval, relative_tolerance=1e-8, output=OUTPUTS):
         """One run from the SI start `state` of `rod`: fmpy's structured array of `output`.
         `inputs(t)` replaces the floor and loads if given; `jumps` are the times it jumps at."""
-        inputs = inputs or constant_inputs(floor, loads)
+        inputs = self._complete(inputs or constant_inputs(floor, loads))
         start = {**rod.parameters(), **state.start_values()}
         what = f"{rod} from {state}"
         with self.fresh_run(what) as instance:
@@ -85,6 +85,15 @@ class SIExperiment(Experiment):
                                            relative_tolerance, list(output))
             return self._model_exchange(instance, start, inputs, sorted(jumps), stop_time, output_interval,
                                         relative_tolerance, list(output))
+
+    def _complete(self, inputs):
+        """inputs(t) with the inputs it does not give at their start values (the model's defaults)."""
+        starts = {v.name: float(v.start) for v in self.model_description.modelVariables
+                  if v.causality == "input" and v.start is not None}
+
+        def completed(t):
+            return {**starts, **inputs(t)}
+        return completed
 
     def _co_simulation(self, instance, start, inputs, jumps, stop_time, interval, rtol, output):
         n = int(round(stop_time / interval))
