@@ -4,6 +4,7 @@ handed over at its instant in both interfaces, the same way."""
 import math
 
 import numpy as np
+import pytest
 from fmpy import simulate_fmu
 
 from painleve import si
@@ -67,3 +68,8 @@ def test_a_belt_switched_on_is_handed_over_at_its_instant(si_fmu_path):
     for name in ("v", "w", "y", "theta", "phi", "F_N", "F_T", "slip"):
         assert np.max(np.abs(a[name] - b[name])) <= 1e-6 * np.max(np.abs(b[name])), name
     assert math.isclose(b["slip"][-1] - b["v"][-1], -U, rel_tol=1e-12)     # slip = v - v_floor
+
+
+def test_another_models_fmu_is_refused_saying_why(fmu_path):
+    with pytest.raises(ValueError, match="is not PainleveRodSI: it has no variables y_floor"):
+        SIExperiment(fmu_path)

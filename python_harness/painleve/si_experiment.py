@@ -19,6 +19,7 @@ event, the rows before and after it). `run_case` runs a paper's `Case` on the SI
 reduces it to its `Outcome` in the paper's units (si.to_paper), so that everything the
 harness checks on PainleveRod (acceptance.py) applies to the SI model.
 """
+import importlib.resources
 import math
 
 import numpy as np
@@ -32,6 +33,8 @@ from .fmpy_internals import cvode_set_stop_time
 from .me_fast_loop import event_iteration
 from .outcome import outcome_of_trajectory
 
+# The SI FMU a pip install of the package carries beside PainleveRod.fmu.
+BUNDLED_SI_FMU = importlib.resources.files("painleve").joinpath("PainleveRodSI.fmu")
 INPUTS = ("y_floor", "w_floor", "v_floor", "F_x", "F_y", "tau")
 STATES = ("x", "v", "y", "w", "theta", "phi")
 OUTPUTS = STATES + ("F_N", "F_T", "energy", "x_cm", "y_cm", "vx_cm", "vy_cm", "gap", "slip", "mode", "contact")
@@ -70,7 +73,20 @@ class _InputCVode(CVodeSolver):
 
 
 class SIExperiment(Experiment):
-    """PainleveRodSI.fmu extracted and instantiated once; runs with inputs (see the module)."""
+    """PainleveRodSI.fmu extracted and instantiated once; runs with inputs (see the module).
+    Without a path, the FMU installed with the package."""
+
+    def __init__(self, fmu_path=None, **kwargs):
+        if fmu_path is None:
+            if not BUNDLED_SI_FMU.exists():
+                raise FileNotFoundError(f"no FMU given and none installed at {BUNDLED_SI_FMU}: `pip install` the "
+                                        f"repository (it builds PainleveRodSI.fmu), or give the path of one")
+            fmu_path = str(BUNDLED_SI_FMU)
+        super().__init__(fmu_path, **kwargs)
+        missing = [n for n in (*INPUTS, *si.SIRod().parameters()) if n not in self.vr]
+        if missing:
+            self.close()
+            raise ValueError(f"{fmu_path} is not PainleveRodSI: it has no variables {', '.join(missing)}")
 
     def simulate(self, rod, state, *, floor=si.Floor(), loads=si.Loads(), inputs=None, jumps=(), stop_time,
                  output_interval, relative_tolerance=1e-8, output=OUTPUTS):
