@@ -12,6 +12,7 @@ against central differences with exactly the dependencies the ModelStructure dec
 and infinite inputs refused naming the input, the FMU state (inputs included) restored and
 serialized."""
 import re
+import zipfile
 from ctypes import POINTER, c_double
 
 import numpy as np
@@ -129,6 +130,30 @@ def test_config_h_lists_the_variables_of_the_model_description(table_path):
                               **{"der(velocity)": "m/s2"}, belt_velocity="m/s", drive_force="N", energy="J",
                               belt_power="W")
     assert md.numberOfEventIndicators == 0 and len(md.derivatives) == 2
+
+
+def test_the_documentation_lists_every_variable_with_its_unit_in_si(table_path):
+    md = read_model_description(table_path)
+    with zipfile.ZipFile(table_path) as z:
+        page = z.read("documentation/index.html").decode()
+    for v in md.modelVariables:
+        assert f"<td>{v.name}</td>" in page and f"<td>{v.unit}</td>" in page, v.name
+    assert "SI units" in page and "Dimensionless" not in page and "Hogan" not in page
+
+
+@pytest.mark.parametrize("fmi_type", INTERFACES)
+def test_a_tool_builds_the_source_fmu_from_its_source_files(table_path, tmp_path, fmi_type):
+    """<SourceFiles> and sources/ are complete: fmpy compiles them (with the README's CVODE
+    options) into a binary that simulates like the CMake build."""
+    from test_source_fmu import source_build, sundials_libraries
+    options = {"CMAKE_C_FLAGS": "-DHAVE_CVODE", "CMAKE_C_STANDARD_LIBRARIES": " ".join(sundials_libraries() + ["-lm"])}
+    unzipped = source_build(table_path, tmp_path, options)
+    a, b = (simulate_fmu(f, fmi_type=fmi_type, start_values=dict(F_N=30.0), output=["position", "velocity"])
+            for f in (table_path, unzipped))
+    for name in ("position", "velocity"):
+        np.testing.assert_allclose(b[name], a[name], rtol=1e-9, atol=1e-12 * np.abs(a[name]).max(), err_msg=name)
+    z, _ = closed_form(b["time"], F_N=30.0, **DEFAULTS)
+    assert np.abs(b["position"] - z).max() < 1e-4 * np.abs(z).max()
 
 
 # ------------------------------------------------------------------ physics under fmpy's masters
