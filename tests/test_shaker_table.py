@@ -352,6 +352,22 @@ def test_a_bad_input_is_an_error_naming_it(table, fmi_type, name, value, when):
     fmu.freeInstance()
 
 
+def test_no_event_indicators_is_an_empty_array_and_any_other_size_is_an_error(table):
+    messages = []
+    fmu = table.instantiate(instance_name="table", on_message=lambda *m: messages.append(m))
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.newDiscreteStates()
+    fmu.enterContinuousTimeMode()
+    fmu.getEventIndicators(None, 0)              # an importer's empty array may be NULL
+    z = np.zeros(1)
+    with pytest.raises(FMICallException):
+        fmu.getEventIndicators(z.ctypes.data_as(_P), 1)
+    assert "size 1 given, ShakerTable has 0" in messages[-1][2]
+    fmu.freeInstance()
+
+
 def test_parameters_out_of_range_are_errors_naming_them(table):
     for name, value in [("M", 0.0), ("K", -1.0), ("C", -0.5), ("frequency", -2.0)]:
         messages = []

@@ -64,7 +64,7 @@ void model_get_indicators(Model *m, double z[])
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
     /* modelDescription.xml's nominals: a table shaken by some mm at some Hz
-     * (the defaults: 1.7 mm, 0.05 m/s); CVODE's absolute tolerance is
+     * (the defaults: 1.66 mm, 0.05 m/s); CVODE's absolute tolerance is
      * rtol times these. */
     (void)m;
     nominal[TABLE_Z] = 1e-4;
