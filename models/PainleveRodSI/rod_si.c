@@ -175,13 +175,12 @@ void model_decide_initial_mode(Model *m)
     model_touch(m);
 }
 
-void model_start(Model *m, double time, char *text, size_t n)
+void model_start(Model *m, double time)
 {
     model_update(m);
     rod_record_start(&m->run, &m->rod, m->xs, time);
     m->v_floor_decided = m->v_floor;
     model_touch(m);
-    snprintf(text, n, "initial mode contact = %d, mode = %+d", m->run.mode.contact, m->run.mode.slip);
 }
 
 void model_begin_integration(Model *m)

@@ -6,60 +6,26 @@
 
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
 /* 2 pi (C99 has no M_PI): the drive's angular frequency is TWO_PI * frequency. */
 #define TWO_PI 6.283185307179586476925286766559
 
 /* ------------------------------------------------------------ variables */
 
-#define MODEL_INFO(id, name, type, kind, field, min, max) [VR_##id] = { name, TYPE_##type, KIND_##kind, min, max },
-static const VariableInfo VARIABLES[VR_COUNT] = { MODEL_VARIABLES(MODEL_INFO) };
-#undef MODEL_INFO
-
-const VariableInfo *model_variable(unsigned int vr)
-{
-    return vr < VR_COUNT ? &VARIABLES[vr] : NULL;
-}
-
-bool model_settable(const VariableInfo *info)
-{
-    return info->kind == KIND_PARAMETER || info->kind == KIND_STATE || info->kind == KIND_INPUT;
-}
+/* The variable table, field access, states and the FMU state's fields are
+ * model_common.c's, from config.h's list. */
 
 void model_reset(Model *m)
 {
     /* A 10 kg top on 40 kN/m (10.07 Hz, damping ratio 0.032), shaken at 5 Hz. */
     *m = (Model){ .params = { .M = 10, .K = 4e4, .C = 40, .F0 = 50, .frequency = 5, .belt_speed = 0 },
-                  .stale = true };
+                  .stale = true,
+                  .partials_stale = true };
 }
 
 const char *model_check(unsigned int vr, double value)
 {
-    const VariableInfo *info = model_variable(vr);
-    if (!isfinite(value)) return "must be finite";
-    if (value < info->min || value > info->max) return "is out of range";
-    return NULL;
-}
-
-/* Only settable kinds are written: the calculated ones are derived. */
-#define ASSIGN_PARAMETER(lvalue, value) (lvalue) = (value)
-#define ASSIGN_STATE(lvalue, value) (lvalue) = (value)
-#define ASSIGN_INPUT(lvalue, value) (lvalue) = (value)
-#define ASSIGN_CALCULATED(lvalue, value) (void)(value)
-#define MODEL_SET(id, name, type, kind, field, min, max) case VR_##id: ASSIGN_##kind(m->field, value); break;
-#define MODEL_READ(id, name, type, kind, field, min, max) case VR_##id: return m->field;
-
-void model_set(Model *m, unsigned int vr, double value)
-{
-    switch (vr) { MODEL_VARIABLES(MODEL_SET) default: break; }
-    m->stale = true;
-}
-
-void model_restore(Model *m, const Model *saved)
-{
-    *m = *saved;
-    m->stale = true;
+    return model_check_range(vr, value);
 }
 
 /* The physics at a time and state: the drive force and the accelerations. */
@@ -75,7 +41,7 @@ static void derivatives(const Model *m, double time, const double x[MODEL_NX], d
     dx[TABLE_V] = (-p->K * x[TABLE_Z] - p->C * x[TABLE_V] + drive(p, time) - m->F_N) / p->M;
 }
 
-static void update_derived(Model *m)
+void model_update(Model *m)
 {
     if (!m->stale) return;
     const TableParams *p = &m->params;
@@ -88,40 +54,7 @@ static void update_derived(Model *m)
     m->stale = false;
 }
 
-static double stored(const Model *m, unsigned int vr)
-{
-    switch (vr) { MODEL_VARIABLES(MODEL_READ) default: return NAN; }
-}
-
-double model_get(Model *m, unsigned int vr)
-{
-    update_derived(m);
-    return stored(m, vr);
-}
-
 /* ---------------------------------------------------- continuous states */
-
-unsigned int model_state_vr(size_t i)
-{
-    return VR_POSITION + (unsigned int)i;
-}
-
-void model_get_states(const Model *m, double x[MODEL_NX])
-{
-    memcpy(x, m->x, sizeof m->x);
-}
-
-void model_set_states(Model *m, const double x[MODEL_NX])
-{
-    memcpy(m->x, x, sizeof m->x);
-    m->stale = true;
-}
-
-void model_get_derivatives(Model *m, double dx[MODEL_NX])
-{
-    update_derived(m);
-    memcpy(dx, m->dx, sizeof m->dx);
-}
 
 void model_get_indicators(Model *m, double z[])
 {
@@ -142,7 +75,7 @@ void model_set_time(Model *m, double time)
 {
     if (time == m->time) return;
     m->time = time;
-    m->stale = true;
+    model_touch(m);
 }
 
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
@@ -172,10 +105,9 @@ void model_decide_initial_mode(Model *m)
     (void)m;   /* no modes */
 }
 
-void model_start(Model *m, double time, char *text, size_t n)
+void model_start(Model *m, double time)
 {
-    (void)time;
-    snprintf(text, n, "table starts at position = %g m, velocity = %g m/s (no modes)", m->x[TABLE_Z], m->x[TABLE_V]);
+    (void)m, (void)time;   /* no modes, no event record */
 }
 
 void model_begin_integration(Model *m)
@@ -223,7 +155,7 @@ const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned in
         *value = unknown == known;
         return NULL;
     }
-    update_derived(m);
+    model_update(m);
     const TableParams *p = &m->params;
     const double omega = TWO_PI * p->frequency, t = m->time;
     const double z = m->x[TABLE_Z], v = m->x[TABLE_V];
@@ -251,20 +183,11 @@ const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned in
 
 /* ------------------------------------------------------ FMU state fields */
 
-#define FIELD_PARAMETER(id, name, type, field) { name, offsetof(Model, field), TYPE_##type },
-#define FIELD_STATE FIELD_PARAMETER
-#define FIELD_INPUT FIELD_PARAMETER
-#define FIELD_CALCULATED(id, name, type, field)
-#define MODEL_FIELD(id, name, type, kind, field, min, max) FIELD_##kind(id, name, type, field)
-#define INTERNAL_FIELD(name, field, type) { name, offsetof(Model, field), TYPE_##type },
-const ModelField model_fields[] = { MODEL_VARIABLES(MODEL_FIELD) MODEL_INTERNALS(INTERNAL_FIELD) };
-const size_t model_n_fields = sizeof model_fields / sizeof model_fields[0];
-
 const char *model_implausible(const Model *m)
 {
     for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
         const VariableInfo *info = model_variable(vr);
-        if (model_settable(info) && model_check(vr, stored(m, vr))) return info->name;
+        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
     }
     return NULL;
 }
