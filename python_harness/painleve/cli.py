@@ -279,21 +279,22 @@ def cmd_couple(args):
         seconds = time.monotonic() - start
         if args.ssp:
             shutil.copyfile(ssp, args.ssp)
-    d = setup.dimensionless()
+    rod_si, case = setup.si_rod(), setup.case()
     coupled_figure(r, args.out, setup=setup, dpi=args.dpi,
-                   title=f"rod on shaker table ({args.master}, h = {args.step:g} s): alpha = {d['alpha']:.3g}, "
-                         f"epsilon = {d['epsilon']:.3g}, delta = {d['delta']:.3g}, mu = {d['mu']:.3g}")
+                   title=f"rod on shaker table ({args.master}, h = {args.step:g} s): alpha = {rod_si.alpha:.3g}, "
+                         f"epsilon = {rod_si.epsilon:.3g}, delta = {rod_si.delta:.3g}, mu = {rod_si.mu:.3g}")
     if args.csv:
         np.savetxt(args.csv, np.column_stack([r[name] for name in r.dtype.names]), delimiter=",",
                    header=",".join(r.dtype.names), comments="", fmt="%.17g")
     on_rod, on_table = impulse_on_rod(r, setup), impulse_on_table(r, args.step)
     print(f"Rod on shaker table: {rod} + {table}, master {args.master} (Jacobi, zero-order hold), "
           f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
-    rv = setup.rod_values()
-    contact_time = math.sqrt(rv["m"] / rv["k"])
-    print(f"rod: alpha = {d['alpha']:.4g}, epsilon = {d['epsilon']:.4g}, delta = {d['delta']:.4g}, mu = {d['mu']:.4g}; "
-          f"theta0 = {d['theta0']:.4g}, v0 = {d['v0']:.4g} sqrt(g l), phi0 = {d['phi0']:.4g} sqrt(g/l); contact time "
-          f"scale sqrt(m/k) = {contact_time:.3g} s = {contact_time / args.step:.3g} h")
+    contact_time = math.sqrt(rod_si.m / rod_si.k)
+    start = (f"theta0 = {case.theta0:.4g}, v0 = {case.v0:.4g}, phi0 = {case.phi0:.4g} (on the table, relative to it)"
+             if case is not None else "the rod starts off the table")
+    print(f"rod: alpha = {rod_si.alpha:.4g}, epsilon = {rod_si.epsilon:.4g}, delta = {rod_si.delta:.4g}, "
+          f"mu = {rod_si.mu:.4g}; {start}; contact time scale sqrt(m/k) = {contact_time:.3g} s = "
+          f"{contact_time / args.step:.3g} h")
     tv = float(np.sum(np.abs(np.diff(np.concatenate(([0.0], r["table.F_N"]))))))
     print(f"impulse of F_N over the run: on the rod {on_rod:.6g} N s (its momentum), on the table {on_table:.6g} N s "
           f"(the inputs it held); difference {on_rod - on_table:+.3g} N s, a zero-order hold's error: at most "

@@ -62,14 +62,23 @@ class Setup:
     def table_values(self):
         return {**TABLE_DEFAULTS, **self.table}
 
-    def dimensionless(self):
-        """The paper's numbers of the rod (ISSUE15.md's scaling): alpha = m l^2/J, epsilon =
-        sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = v(0)/sqrt(g l), phi0 = phi(0) sqrt(l/g),
-        each against a floor at rest."""
-        r = self.rod_values()
-        m, l, g = r["m"], r["l"], r["g"]
-        return dict(alpha=m * l * l / r["J"], epsilon=math.sqrt(m * g / (r["k"] * l)), delta=r["c"] / math.sqrt(m * r["k"]),
-                    mu=r["mu"], theta0=r["theta"], v0=r["v"] / math.sqrt(g * l), phi0=r["phi"] * math.sqrt(l / g))
+    def si_rod(self):
+        """The rod's parameters as painleve.si's SIRod."""
+        from .si import SIRod
+        return SIRod(**{k: v for k, v in self.rod_values().items() if k in SIRod.__dataclass_fields__})
+
+    def case(self):
+        """The paper's Case of the rod's start (painleve.si.case_of: alpha = m l^2/J, epsilon =
+        sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = (v - v_floor)/sqrt(g l), phi0 = phi
+        sqrt(l/g), w10), relative to the table's surface at its start; None if the rod does not
+        start on it."""
+        from .si import Floor, SIState, case_of
+        t = self.table_values()
+        state = SIState(**{k: v for k, v in self.rod_values().items() if k in SIState.__dataclass_fields__})
+        try:
+            return case_of(self.si_rod(), state, Floor(y0=t["position"], w=t["velocity"], v=t["belt_speed"]))
+        except ValueError:
+            return None
 
 
 def write_coupled_ssp(path, rod_fmu, table_fmu, setup=None, *, stop_time=1.0):
