@@ -94,6 +94,15 @@ def test_the_coupled_archive_is_valid(rod_fmu, table_fmu, tmp_path):
         ("table", "belt_velocity", "rod", "v_floor"), ("rod", "F_N", "table", "F_N"), ("rod", "F_T", "table", "F_T")}
 
 
+def test_the_bound_defaults_are_the_models_own_start_values(rod_fmu, table_fmu):
+    """The archive binds every default explicitly: they must be the model descriptions' starts."""
+    from painleve.coupled import ROD_DEFAULTS, TABLE_DEFAULTS
+    for fmu, defaults in ((rod_fmu, ROD_DEFAULTS), (table_fmu, TABLE_DEFAULTS)):
+        start = {v.name: v.start for v in fmpy.read_model_description(fmu).modelVariables}
+        for name, value in defaults.items():
+            assert float(start[name]) == pytest.approx(value, rel=1e-14), (fmu, name)
+
+
 # ------------------------------------------------------------------ the masters' scheme
 @pytest.mark.parametrize("master", masters.MASTERS)
 def test_each_master_holds_the_value_its_source_had_at_the_start_of_the_step(master, table_fmu, tmp_path):

@@ -11,7 +11,7 @@ What a run gives and what the physics fixes about it (the tests' independent che
   step (`impulse_on_table`); the impulse the rod receives is, by its momentum, m (vy_cm(T) -
   vy_cm(0)) + m g T with no applied load (`impulse_on_rod`); a Jacobi master with a zero-order
   hold hands the table the rod's F_N at the start of each step, a left Riemann sum, so the two
-  differ by O(h);
+  differ by at most h TV(F_N), O(h) (a contact shorter than a step escapes the samples whole);
 - the table's own momentum, M (z'(T) - z'(0)) = int(-K z - C z' + F0 sin(2 pi f t)) dt - the
   impulse it holds (`table_momentum_impulse`).
 """
@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .si import Floor, SIRod, SIState, case_of
 from .ssp import Component, Connection, write_ssp
 
 ROD, TABLE = "rod", "table"
@@ -43,9 +44,8 @@ CONNECTIONS = (
 RECORD = tuple(f"{ROD}.{n}" for n in ROD_OUTPUTS + ROD_INPUTS) + \
     tuple(f"{TABLE}.{n}" for n in TABLE_OUTPUTS + TABLE_INPUTS)
 
-# The models' defaults (ISSUE15.md): the rod's start values, the table's parameters.
-ROD_DEFAULTS = dict(m=1.0, l=0.5, J=1.0 / 12, g=9.81, k=2e7, c=4500.0, mu=3.0,
-                    x=0.0, v=2.0, y=0.0, w=0.0, theta=1.0, phi=2.0)
+# The models' defaults (ISSUE15.md): the rod's (painleve.si's SIRod and SIState), the table's.
+ROD_DEFAULTS = {**SIRod().parameters(), **SIState().start_values()}
 TABLE_DEFAULTS = dict(M=10.0, K=4e4, C=40.0, F0=50.0, frequency=5.0, belt_speed=0.0, position=0.0, velocity=0.0)
 
 
@@ -64,7 +64,6 @@ class Setup:
 
     def si_rod(self):
         """The rod's parameters as painleve.si's SIRod."""
-        from .si import SIRod
         return SIRod(**{k: v for k, v in self.rod_values().items() if k in SIRod.__dataclass_fields__})
 
     def case(self):
@@ -72,7 +71,6 @@ class Setup:
         sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = (v - v_floor)/sqrt(g l), phi0 = phi
         sqrt(l/g), w10), relative to the table's surface at its start; None if the rod does not
         start on it."""
-        from .si import Floor, SIState, case_of
         t = self.table_values()
         state = SIState(**{k: v for k, v in self.rod_values().items() if k in SIState.__dataclass_fields__})
         try:
