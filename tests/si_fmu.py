@@ -1,20 +1,7 @@
-"""What the SI rod's tests share: the built PainleveRodSI.fmu, and the rod's mechanics
+"""What the SI rod's tests share (the FMU is conftest's si_fmu_path): the rod's mechanics
 computed here from the outputs by the laws of docs/si_model.md §9-10 (not by the model's
 equations): energy and the inputs' work."""
-import pathlib
-
 import numpy as np
-import pytest
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-
-
-@pytest.fixture(scope="session")
-def si_fmu_path():
-    path = ROOT / "build" / "PainleveRodSI.fmu"
-    if not path.exists():
-        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
-    return str(path)
 
 
 def energy(rod, r):

@@ -10,7 +10,7 @@ import pytest
 
 from painleve import si
 from painleve.si_experiment import SIExperiment
-from si_fmu import contact_impulses, energy, input_work, on_grid, si_fmu_path  # noqa: F401 (a fixture)
+from si_fmu import contact_impulses, energy, input_work, on_grid
 
 RTOL = 1e-10
 FMI_TYPES = ["ModelExchange", "CoSimulation"]

@@ -9,7 +9,7 @@ from fmpy import simulate_fmu
 
 from painleve import si
 from painleve.si_experiment import OUTPUTS, SIExperiment
-from si_fmu import on_grid, si_fmu_path  # noqa: F401 (a fixture)
+from si_fmu import on_grid
 
 ROD = si.SIRod(k=2e5, c=45.0, mu=0.6)
 STATE = si.SIState(x=0.1, v=1.0, y=0.03, w=-0.5, theta=0.8, phi=-3.0)   # dropped: bounces, slips, sticks

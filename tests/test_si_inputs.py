@@ -7,7 +7,6 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 from painleve.si_experiment import INPUTS, SIExperiment
-from si_fmu import si_fmu_path  # noqa: F401 (a fixture)
 
 FMI2_ERROR = 3
 

@@ -12,7 +12,7 @@ from painleve import si
 from painleve.case import Case, horizon
 from painleve.experiment import Experiment
 from painleve.si_experiment import SIExperiment
-from si_fmu import on_grid, si_fmu_path  # noqa: F401 (a fixture)
+from si_fmu import on_grid
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
 COMPARED = STATES + ["F_N", "F_T", "energy", "mode", "contact"]
