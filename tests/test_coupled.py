@@ -18,7 +18,6 @@ physics or the master's scheme fixes, not one of the code's own outputs:
   within the communication step's own error.
 """
 import math
-import pathlib
 
 import fmpy
 import numpy as np
@@ -31,7 +30,6 @@ from painleve.coupled import (RECORD, Setup, impulse_on_rod, impulse_on_table, r
 from painleve.ssp import Component, Connection, write_ssp
 from painleve.ssp_check import check_ssp
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 STATES = ("rod.x", "rod.v", "rod.y", "rod.w", "rod.theta", "rod.phi", "table.position", "table.velocity")
 
 # A soft contact (eps ~ 1e-2) in persistent slipping contact: mu = 0.3 is below the Painleve
@@ -46,27 +44,10 @@ STEPS = (4e-4, 2e-4, 1e-4, 5e-5)
 HEAVY = Setup(table=dict(M=1e6, F0=0.0))
 
 
-def _built(name):
-    path = ROOT / "build" / f"{name}.fmu"
-    if not path.exists():
-        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
-    return str(path)
-
-
 @pytest.fixture(scope="module")
-def rod_fmu():
-    return _built("PainleveRodSI")
-
-
-@pytest.fixture(scope="module")
-def table_fmu():
-    return _built("ShakerTable")
-
-
-@pytest.fixture(scope="module")
-def soft_runs(rod_fmu, table_fmu):
+def soft_runs(si_fmu_path, table_path):
     """fmpy's runs of the soft case at each communication step."""
-    return {h: run_coupled(rod_fmu, table_fmu, SOFT, stop_time=SOFT_STOP, step=h) for h in STEPS}
+    return {h: run_coupled(si_fmu_path, table_path, SOFT, stop_time=SOFT_STOP, step=h) for h in STEPS}
 
 
 def on_grid(r, step):
@@ -84,8 +65,8 @@ def gap(a, b, names=STATES):
 
 
 # ------------------------------------------------------------------ the archive
-def test_the_coupled_archive_is_valid(rod_fmu, table_fmu, tmp_path):
-    ssp = write_coupled_ssp(tmp_path / "coupled.ssp", rod_fmu, table_fmu, SOFT, stop_time=SOFT_STOP)
+def test_the_coupled_archive_is_valid(si_fmu_path, table_path, tmp_path):
+    ssp = write_coupled_ssp(tmp_path / "coupled.ssp", si_fmu_path, table_path, SOFT, stop_time=SOFT_STOP)
     assert check_ssp(ssp) == []
     # the five connections of ISSUE15.md, each from an output to an input
     from fmpy.ssp.ssd import read_ssd
@@ -94,10 +75,10 @@ def test_the_coupled_archive_is_valid(rod_fmu, table_fmu, tmp_path):
         ("table", "belt_velocity", "rod", "v_floor"), ("rod", "F_N", "table", "F_N"), ("rod", "F_T", "table", "F_T")}
 
 
-def test_the_bound_defaults_are_the_models_own_start_values(rod_fmu, table_fmu):
+def test_the_bound_defaults_are_the_models_own_start_values(si_fmu_path, table_path):
     """The archive binds every default explicitly: they must be the model descriptions' starts."""
     from painleve.coupled import ROD_DEFAULTS, TABLE_DEFAULTS
-    for fmu, defaults in ((rod_fmu, ROD_DEFAULTS), (table_fmu, TABLE_DEFAULTS)):
+    for fmu, defaults in ((si_fmu_path, ROD_DEFAULTS), (table_path, TABLE_DEFAULTS)):
         start = {v.name: v.start for v in fmpy.read_model_description(fmu).modelVariables}
         for name, value in defaults.items():
             assert float(start[name]) == pytest.approx(value, rel=1e-14), (fmu, name)
@@ -105,12 +86,12 @@ def test_the_bound_defaults_are_the_models_own_start_values(rod_fmu, table_fmu):
 
 # ------------------------------------------------------------------ the masters' scheme
 @pytest.mark.parametrize("master", masters.MASTERS)
-def test_each_master_holds_the_value_its_source_had_at_the_start_of_the_step(master, table_fmu, tmp_path):
+def test_each_master_holds_the_value_its_source_had_at_the_start_of_the_step(master, table_path, tmp_path):
     """Two undriven-by-the-rod tables, each loaded by the other's drive force F0 sin(2 pi f t): a
     zero-order hold in a Jacobi scheme hands table B in step k exactly F0 sin(2 pi f t_(k-1))."""
     F0, f = 50.0, 5.0
-    a = Component("A", table_fmu, {"F0": F0, "frequency": f}, inputs=("F_N",), outputs=("drive_force", "position"))
-    b = Component("B", table_fmu, {"F0": -F0, "frequency": f}, inputs=("F_N",), outputs=("drive_force", "position"))
+    a = Component("A", table_path, {"F0": F0, "frequency": f}, inputs=("F_N",), outputs=("drive_force", "position"))
+    b = Component("B", table_path, {"F0": -F0, "frequency": f}, inputs=("F_N",), outputs=("drive_force", "position"))
     ssp = write_ssp(tmp_path / "tables.ssp", "tables", [a, b],
                     [Connection(("A", "drive_force"), ("B", "F_N")), Connection(("B", "drive_force"), ("A", "F_N"))],
                     stop_time=0.2)
@@ -197,11 +178,11 @@ def paper_numbers(setup):
 
 
 @pytest.mark.parametrize("master", masters.MASTERS)
-def test_on_a_very_heavy_table_the_rod_lifts_off_with_w_equal_to_e_v0(master, rod_fmu, table_fmu):
+def test_on_a_very_heavy_table_the_rod_lifts_off_with_w_equal_to_e_v0(master, si_fmu_path, table_path):
     d = paper_numbers(HEAVY)
     e = an.e(d["delta"], d["theta0"], alpha=d["alpha"], mu=d["mu"])
     assert -1 + d["phi0"] ** 2 * math.sin(d["theta0"]) < 0          # Theorem 1: b < 0
-    r = run_coupled(rod_fmu, table_fmu, HEAVY, stop_time=0.01, step=1e-4, master=master)
+    r = run_coupled(si_fmu_path, table_path, HEAVY, stop_time=0.01, step=1e-4, master=master)
     p = HEAVY.rod_values()
     w = lift_off_w(r, HEAVY) / math.sqrt(p["g"] * p["l"])
     eps = d["epsilon"]
@@ -214,13 +195,13 @@ def test_on_a_very_heavy_table_the_rod_lifts_off_with_w_equal_to_e_v0(master, ro
         (d["alpha"], d["epsilon"], d["delta"], d["theta0"], d["v0"], d["phi0"]), rel=1e-12)
 
 
-def test_on_a_very_heavy_table_the_rod_moves_as_on_a_fixed_floor(rod_fmu, table_fmu):
+def test_on_a_very_heavy_table_the_rod_moves_as_on_a_fixed_floor(si_fmu_path, table_path):
     """fmpy's Co-Simulation of the rod alone (inputs 0: the floor fixed) on the same grid. The
     table takes the rod's impulse (< 1 N s) with M = 1e6 kg: it moves at < 1e-6 m/s, so the
     rod's states agree to that and the solver's tolerance."""
     h, stop = 1e-4, 0.01
-    r = run_coupled(rod_fmu, table_fmu, HEAVY, stop_time=stop, step=h)
-    alone = fmpy.simulate_fmu(rod_fmu, fmi_type="CoSimulation", stop_time=stop, output_interval=h,
+    r = run_coupled(si_fmu_path, table_path, HEAVY, stop_time=stop, step=h)
+    alone = fmpy.simulate_fmu(si_fmu_path, fmi_type="CoSimulation", stop_time=stop, output_interval=h,
                               output=["x", "v", "y", "w", "theta", "phi"])[1:]
     for name in ("x", "v", "y", "w", "theta", "phi"):
         scale = 1 + np.max(np.abs(alone[name]))
@@ -229,11 +210,11 @@ def test_on_a_very_heavy_table_the_rod_moves_as_on_a_fixed_floor(rod_fmu, table_
 
 # ------------------------------------------------------------------ the other masters
 @pytest.mark.parametrize("master", ["libcosim", "ecos"])
-def test_the_other_masters_give_fmpys_results_to_the_steps_order(master, rod_fmu, table_fmu, soft_runs):
+def test_the_other_masters_give_fmpys_results_to_the_steps_order(master, si_fmu_path, table_path, soft_runs):
     """Each state within the communication step's own error (fmpy's d(h) = |q_h - q_(h/2)|) of
     fmpy's run at the same h: the same scheme, so they agree far closer (docs/coupling.md)."""
     h = 1e-4
-    theirs = run_coupled(rod_fmu, table_fmu, SOFT, stop_time=SOFT_STOP, step=h, master=master)
+    theirs = run_coupled(si_fmu_path, table_path, SOFT, stop_time=SOFT_STOP, step=h, master=master)
     ours = soft_runs[h]
     step_error = gap(soft_runs[2 * h], soft_runs[h])
     differences = gap(on_grid(theirs, 2 * h), ours)
