@@ -42,3 +42,10 @@ def test_one_pip_install_of_the_repository_gives_a_working_painleve_iwc(tmp_path
     eps = 1e-4
     assert simulated["iwc"] and predicted["theorem"] == 1
     assert abs(simulated["w"] / report["case"]["v0"] - predicted["e"]) < 3 * eps * math.log(1 / eps)
+
+    # the coupled study (painleve couple) runs on the rod in SI units and the table installed with it
+    out = subprocess.run([painleve, "couple", "--stop", "0.01", "--out", str(tmp_path / "couple.png")],
+                         capture_output=True, text=True, cwd=tmp_path, env={"PATH": "/usr/bin:/bin"}, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert f"{site}/PainleveRodSI.fmu + {site}/ShakerTable.fmu" in out.stdout
+    assert (tmp_path / "couple.png").read_bytes()[:4] == b"\x89PNG"

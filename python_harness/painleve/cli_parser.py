@@ -380,10 +380,12 @@ def _add_couple(sub):
                                     "co-simulation master (fixed communication step, Jacobi with zero-order hold) "
                                     "and writes a figure: the rod and the table over time, the forces on both "
                                     "sides. Prints the impulse of the normal force on each side (equal to O(h)).")
-    cp.add_argument("--rod", metavar="PATH", default=DEFAULT_ROD_FMU,
-                    help="the rod's FMU (default %(default)s)")
-    cp.add_argument("--table", metavar="PATH", default=DEFAULT_TABLE_FMU,
-                    help="the table's FMU (default %(default)s)")
+    cp.add_argument("--rod", metavar="PATH",
+                    help=f"the rod's FMU (default {DEFAULT_ROD_FMU} if there is one, else the one installed with "
+                         f"the package)")
+    cp.add_argument("--table", metavar="PATH",
+                    help=f"the table's FMU (default {DEFAULT_TABLE_FMU} if there is one, else the one installed "
+                         f"with the package)")
     cp.add_argument("--master", choices=MASTERS, default="fmpy",
                     help="fmpy (fmpy.ssp), libcosim (libcosimpy) or ecos (ecospy); the last two are installed by "
                          "`bash run.sh test` (default %(default)s)")
@@ -410,11 +412,15 @@ def coupled_fmu(path, role):
     line: missing, not an FMU, not FMI 2.0 (libcosim loads FMI 1.0 and 2.0 only), another model,
     no Co-Simulation, no binary for this platform. Returns the path and its variables by name."""
     default, required = {"rod": (DEFAULT_ROD_FMU, ROD_VARIABLES), "table": (DEFAULT_TABLE_FMU, TABLE_VARIABLES)}[role]
+    if path is None:        # build/NAME.fmu where there is one (the repository), else the package's own
+        import importlib.resources
+        bundled = importlib.resources.files("painleve").joinpath(pathlib.Path(default).name)
+        path = str(bundled) if bundled.is_file() and not os.path.exists(default) else default
     p = pathlib.Path(path)
     where = f"painleve couple: --{role} {p}"
     if not p.exists():
-        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default}) or give "
-                         f"the path of one")
+        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default}), "
+                         f"`pip install` the repository (it installs one with the package) or give the path of one")
     if p.is_dir() or not zipfile.is_zipfile(p):
         raise UsageError(f"{where} is not an FMU (a zip archive such as {default}); give the .fmu file")
     version = _fmi_version(p)
