@@ -117,10 +117,10 @@ test_python_setup() {
 }
 
 build_fmu() {
-    log "building PainleveRod.fmu"
+    log "building the FMUs (PainleveRod FMI 2.0 and 3.0, PainleveRodSI, ShakerTable)"
     cmake -S . -B build -DPython3_EXECUTABLE="$PY" -DCMAKE_BUILD_TYPE=Release >/dev/null
     cmake --build build -j 2 >/dev/null
-    log "built $ROOT/build/PainleveRod.fmu"
+    log "built $ROOT/build/*.fmu"
 }
 
 setup() { apt_install "${APT_PACKAGES[@]}"; python_setup; build_fmu; }
@@ -130,8 +130,9 @@ case "${1:-}" in
           "$VENV/bin/painleve" validate build/PainleveRod.fmu --report out/validation.md || rc=$?
           "$VENV/bin/painleve" validate build/fmi3/PainleveRod.fmu --report out/validation-fmi3.md || rc=$?
           "$VENV/bin/painleve" figures --out out/figures || rc=$?
-          printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png, fig_eLaw.png; the numbers in figures.json, a summary in figures.md)\n' \
-              "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/"
+          "$VENV/bin/painleve" couple --out out/couple.png || rc=$?
+          printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png, fig_eLaw.png; the numbers in figures.json, a summary in figures.md)\ncoupled study (PainleveRodSI on ShakerTable, SSP): %s\n' \
+              "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/" "$ROOT/out/couple.png"
           exit $rc ;;
     test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
     *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;

@@ -72,14 +72,14 @@ def command_block():
 def test_the_painleve_commands_run_as_written_and_do_what_their_comments_say(tmp_path):
     (tmp_path / "build").symlink_to(ROOT / "build")      # a directory with the build, as after run.sh
     commands = command_block()
-    assert [c.split()[1] for c, _ in commands] == ["iwc", "iwc", "validate", "figures", "sweep"]
+    assert [c.split()[1] for c, _ in commands] == ["iwc", "iwc", "validate", "figures", "sweep", "couple"]
     outputs = []
     for command, _ in commands:
         args = shlex.split(command)[1:]
         r = subprocess.run(painleve_command() + args, cwd=tmp_path, capture_output=True, text=True, timeout=600)
         assert r.returncode == 0, (command, r.stderr)
         outputs.append(r.stdout)
-    table, theorem2, validation, figures, sweep = outputs
+    table, theorem2, validation, figures, sweep, couple = outputs
     assert "one case: simulated vs analytic table" == commands[0][1]
     row = next(line for line in table.splitlines() if line.startswith("w at return"))
     simulated, analytic = (float(cell.split()[0]) for cell in re.split(r"\s{2,}", row)[1:3])
@@ -94,3 +94,4 @@ def test_the_painleve_commands_run_as_written_and_do_what_their_comments_say(tmp
                                                                                "fig_video.png", "fig_eLaw.png"}
     df = pd.read_parquet(tmp_path / "out" / "sweep.parquet")
     assert len(df) == 50 * 2 * 4 * 3 and df["id"].is_unique
+    assert (tmp_path / "out" / "couple.png").exists() and "impulse of F_N" in couple
