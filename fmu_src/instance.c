@@ -185,8 +185,10 @@ Status instance_check_set(Instance *in, const char *call, unsigned int vr, Varia
 void instance_set(Instance *in, unsigned int vr, double value)
 {
     const VariableInfo *info = model_variable(vr);
-    if (info && info->kind == KIND_INPUT && model_get(&in->model, vr) != value) in->inputs_jumped = true;
+    const bool input = info && info->kind == KIND_INPUT;
+    const bool changed = input && model_get(&in->model, vr) != value;
     model_set(&in->model, vr, value);
+    if (input && (model_input_set(&in->model, vr, in->time) || changed)) in->inputs_jumped = true;
 }
 
 static Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)

@@ -96,6 +96,7 @@ Status instance_step(Instance *in, const char *call, double t, double h, StepPol
     if (!(isfinite(h) && h > 0))
         return instance_fail(in, call, "communicationStepSize = %g must be finite and > 0", h);
     in->time = t;    /* the master's point: where the step starts, and nothing it reports comes before */
+    model_step_begin(&in->model, t);
     if (integrate(in, call, t + h, policy, end) != STATUS_OK) return STATUS_ERROR;
     in->last_successful_time = in->time;
     return STATUS_OK;

@@ -53,6 +53,17 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     rod_nominals(&m->params, nominal);
 }
 
+bool model_input_set(Model *m, unsigned int vr, double time)
+{
+    (void)m, (void)vr, (void)time;   /* the rod has no inputs */
+    return false;
+}
+
+void model_step_begin(Model *m, double time)
+{
+    (void)m, (void)time;
+}
+
 void model_set_time(Model *m, double time)
 {
     (void)m, (void)time;   /* the rod is autonomous */

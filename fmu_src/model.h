@@ -75,6 +75,16 @@ void model_get_derivatives(Model *m, double dx[MODEL_NX]);
 void model_get_indicators(Model *m, double z[]);
 void model_get_nominals(const Model *m, double nominal[MODEL_NX]);
 
+/* Input vr was set at `time` (after model_set). True if the set changed the
+ * model's trajectory beyond the value itself (a Co-Simulation step must then
+ * restart its integrator), as when an input starts a new interpolation. */
+bool model_input_set(Model *m, unsigned int vr, double time);
+
+/* A Co-Simulation step begins at `time`: a model whose inputs it interpolates
+ * between communication points starts doing so. (Model Exchange never calls it:
+ * there the master gives the inputs at every time.) */
+void model_step_begin(Model *m, double time);
+
 /* The time the getters above evaluate at (the instance's; a model driven by
  * time, such as a harmonic force, needs it; an autonomous one ignores it). */
 void model_set_time(Model *m, double time);

@@ -38,6 +38,7 @@
 #define rod_partials NAMESPACED(rod_partials)
 
 /* models/PainleveRodSI/rod_si_partials.c */
+#define si_floor_elapsed NAMESPACED(si_floor_elapsed)
 #define si_partial NAMESPACED(si_partial)
 
 /* rod_record.c: the event iteration of a rod model */
@@ -63,6 +64,7 @@
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)
+#define model_input_set NAMESPACED(model_input_set)
 #define model_indicators_at NAMESPACED(model_indicators_at)
 #define model_jacobian_at NAMESPACED(model_jacobian_at)
 #define model_n_fields NAMESPACED(model_n_fields)
@@ -75,6 +77,7 @@
 #define model_settable NAMESPACED(model_settable)
 #define model_start NAMESPACED(model_start)
 #define model_state_vr NAMESPACED(model_state_vr)
+#define model_step_begin NAMESPACED(model_step_begin)
 #define model_stored NAMESPACED(model_stored)
 #define model_touch NAMESPACED(model_touch)
 #define model_update NAMESPACED(model_update)

@@ -113,17 +113,18 @@ def total_variation(r, name, start):
 def test_action_equals_reaction_across_the_coupling_to_the_steps_order(soft_runs):
     """The table holds in each step the F_N the rod gave at the step's start (fmpy: 0 in the first
     step, where the rod's is 0 too). The impulse the rod received, from its momentum, and the one
-    the table held then differ by a left Riemann sum's error, at most h TV(F_N) (the total
-    variation of the rod's force, jumps at the communication points included): O(h). And the
-    table's momentum balance shows it took exactly the impulse it held."""
+    the table held then differ by a left Riemann sum's error, O(h): it halves with the step (the
+    rod's force also jumps at each communication point, where the master moves its floor to the
+    table's new position, so the samples' total variation does not bound it). And the table's
+    momentum balance shows it took exactly the impulse it held."""
+    differences = []
     for h, r in soft_runs.items():
         np.testing.assert_array_equal(r["table.F_N"][1:], r["rod.F_N"][:-1])
         assert r["table.F_N"][0] == 0 and abs(r["rod.F_N"][0]) > 0
         on_rod, on_table = impulse_on_rod(r, SOFT), impulse_on_table(r, h)
         assert on_rod > 0.5 * SOFT.rod_values()["m"] * 9.81 * SOFT_STOP      # the floor carries the rod
-        tv = total_variation(r, "rod.F_N", 0.0)
-        assert abs(on_rod - on_table) <= h * tv, (h, on_rod - on_table, h * tv)
         assert abs(on_rod - on_table) < 2e-2 * on_table
+        differences.append(on_rod - on_table)
         # the table's momentum: M dz' = int(-K z - C z' + drive) - impulse held; int K z by the
         # trapezoid rule, whose error is at most K T h^2 max|z''| / 12, and the solver's share
         # (the table's CVODE restarts at every step's new input: 1e-4 of the impulse allowed)
@@ -131,9 +132,9 @@ def test_action_equals_reaction_across_the_coupling_to_the_steps_order(soft_runs
         accel = np.max(np.abs(np.diff(r["table.velocity"]))) / h
         trapezoid = SOFT.table_values()["K"] * SOFT_STOP * h * h * accel / 12
         assert abs(received - on_table) <= trapezoid + 1e-4 * on_table, (h, received - on_table, trapezoid)
-    fine = min(STEPS)
-    assert abs(impulse_on_rod(soft_runs[fine], SOFT) - impulse_on_table(soft_runs[fine], fine)) \
-        < 1e-3 * impulse_on_table(soft_runs[fine], fine)
+    # first order: each halving of h halves the difference (measured ratios 2.0 to 2.1)
+    for coarse, fine in zip(differences, differences[1:]):
+        assert 1.6 <= coarse / fine <= 2.6, differences
 
 
 # ------------------------------------------------------------------ convergence

@@ -60,19 +60,22 @@ def relative_motion_error(path, fmi_type, rod, state, stop, floor, loads, rtol):
 @pytest.mark.parametrize("rod, state, stop", [BOUNCING, IWC])
 def test_a_floor_at_constant_velocity_gives_the_fixed_floors_relative_motion(si_fmu_path, fmi_type, rod, state,
                                                                              stop, loads):
-    # Co-Simulation holds an input over a communication step, so a vertical ramp y_floor = y0 + W t
-    # is a staircase there: the vertical motion is checked through Model Exchange, whose loop gives
-    # CVode the input at each right-hand side's time; the belt and a raised floor through both.
-    floor = si.Floor(y0=0.02, w=0.3 if fmi_type == "ModelExchange" else 0.0, v=1.2)
+    # Model Exchange: the loop gives CVode the inputs at each right-hand side's time. Co-Simulation:
+    # the master sets y_floor = y0 + W t_k at each communication point and the FMU moves the floor
+    # on at w_floor = W between them (a held floor would be a staircase, and the runs would differ
+    # by O(W h), not by the solver's error).
+    floor = si.Floor(y0=0.02, w=0.3, v=1.2)
     coarse, _, _ = relative_motion_error(si_fmu_path, fmi_type, rod, state, stop, floor, loads, 1e-8)
     fine, a, b = relative_motion_error(si_fmu_path, fmi_type, rod, state, stop, floor, loads, 1e-10)
     assert np.any(a["contact"]) and np.array_equal(a["contact"], b["contact"]) and np.array_equal(a["mode"], b["mode"])
     # The runs differ by CVode's errors only (the moving floor's states are larger, y by y0 + W t and
     # v by U, and so are the errors their relative tolerance allows): the difference is small and
-    # falls with the tolerance (measured: up to 2e-6 of a variable's range at rtol 1e-10, 10 to 100
-    # times more at 1e-8), down to rounding. A physical difference would not fall.
+    # falls with the tolerance (measured: up to 2e-6 of a variable's range at rtol 1e-10 in Model
+    # Exchange, 1.1e-5 in Co-Simulation, whose CVODE restarts at every communication point of the
+    # moving floor; 10 to 100 times more at 1e-8), down to rounding. A physical difference would not fall.
+    limit = 1e-5 if fmi_type == "ModelExchange" else 4e-5
     for name in fine:
-        assert fine[name] <= 1e-5, (name, fine[name])
+        assert fine[name] <= limit, (name, fine[name])
         assert fine[name] <= coarse[name] / 5 or fine[name] <= 1e-8, (name, coarse[name], fine[name])
 
 

@@ -68,3 +68,28 @@ def test_a_finite_input_is_taken(loaded, fmi_type, state):
         assert not [m for status, _, m in messages if status >= FMI2_ERROR]
     finally:
         fmu.freeInstance()
+
+
+def test_in_co_simulation_the_floor_moves_on_at_w_floor_between_the_sets_of_y_floor(loaded):
+    """After a step of h with y_floor = 0 set at t = 0 and w_floor = W, the floor is at W h (the
+    first-order hold of docs/si_model.md), so gap = y - W h; d gap/d w_floor is -h, the time the
+    floor has moved; a new y_floor puts the floor there (d gap/d w_floor back to 0)."""
+    W, h = 0.3, 2e-4
+    fmu = loaded.instantiate(fmi_type="CoSimulation")
+    try:
+        vr = loaded.vr
+        fmu.setupExperiment(startTime=0.0)
+        fmu.setReal([vr["y"], vr["w"]], [0.05, 0.0])                # in flight, far above the floor
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        fmu.setReal([vr["y_floor"], vr["w_floor"]], [0.0, W])
+        fmu.doStep(0.0, h)
+        y, gap = fmu.getReal([vr["y"], vr["gap"]])
+        assert gap == pytest.approx(y - W * h, rel=0, abs=1e-15)
+        d = fmu.getDirectionalDerivative([vr["gap"]], [vr["w_floor"]], [1.0])[0]
+        assert d == pytest.approx(-h, rel=1e-12)
+        fmu.setReal([vr["y_floor"]], [W * h])                        # the master's new floor
+        assert fmu.getReal([vr["gap"]])[0] == pytest.approx(y - W * h, rel=0, abs=1e-15)
+        assert fmu.getDirectionalDerivative([vr["gap"]], [vr["w_floor"]], [1.0])[0] == 0
+    finally:
+        fmu.freeInstance()

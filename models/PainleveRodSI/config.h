@@ -53,7 +53,10 @@
 
 #define MODEL_INTERNALS(INTERNAL)                             \
     ROD_RECORD_INTERNALS(INTERNAL) \
-    INTERNAL("v_floor_decided", v_floor_decided, REAL)
+    INTERNAL("v_floor_decided", v_floor_decided, REAL)    \
+    INTERNAL("time", time, REAL)                          \
+    INTERNAL("t_floor", t_floor, REAL)                    \
+    INTERNAL("floor_moves", floor_moves, BOOLEAN)
 
 /* Outputs beyond the states and derivatives. */
 enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_NOUT };
@@ -68,6 +71,9 @@ typedef struct {
     double x[ROD_NX];
     RodRecord run;
     double v_floor_decided; /* the belt speed the mode was last decided for */
+    double time;            /* the instance's (model_set_time) */
+    double t_floor;         /* when y_floor was last set: in Co-Simulation the floor moves on at w_floor */
+    bool floor_moves;       /* a Co-Simulation step has begun: the floor moves between communication points */
     bool stale, partials_stale;
     RodParams rod;        /* alpha, mu, delta, epsilon and the loads in units of m g, m g l */
     double xs[ROD_NX];    /* the state in the paper's units, in the floor's frame */

@@ -8,8 +8,11 @@
  *   xs = (x/l, (v - v_floor)/U, (y - y_floor)/l, (w - w_floor)/U, theta, phi T),
  *   alpha = m l^2/J, epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k),
  *   loads f_x = F_x/(m g), f_y = F_y/(m g), tau/(m g l).
- * The floor moves vertically with the inputs y_floor, w_floor and horizontally at
- * the belt speed v_floor, piecewise constant (a jump is an event), so the
+ * The floor moves vertically with the inputs y_floor, w_floor (in
+ * Co-Simulation, between the instants the master sets y_floor, on at w_floor
+ * from where it put it: a first-order hold, so a step sees a floor that moves,
+ * not a staircase) and horizontally at the belt speed v_floor, piecewise
+ * constant (a jump is an event), so the
  * floor's frame is inertial horizontally: v' = g v_s' and, sticking, v = v_floor
  * exactly. Vertically the floor enters only through the gap and the relative
  * velocity of the contact law, so w' = g w_s' whatever the floor's acceleration. */
@@ -30,11 +33,17 @@ typedef struct {
     double rate[ROD_NX];   /* der(x_j) = rate_j der(xs_j) for v, w, phi: g, g, g/l */
 } Scaling;
 
-static Scaling scaling(const Model *m)
+double si_floor_elapsed(const Model *m, double time)
+{
+    return m->floor_moves ? time - m->t_floor : 0.0;
+}
+
+static Scaling scaling(const Model *m, double time)
 {
     const double U = sqrt(m->g * m->l), per_T = sqrt(m->g / m->l);
+    const double y_floor = m->y_floor + m->w_floor * si_floor_elapsed(m, time);
     return (Scaling){ .scale = { m->l, U, m->l, U, 1, per_T },
-                      .offset = { 0, m->v_floor, m->y_floor, m->w_floor, 0, 0 },
+                      .offset = { 0, m->v_floor, y_floor, m->w_floor, 0, 0 },
                       .rate = { 0, m->g, 0, m->g, 0, m->g / m->l } };
 }
 
@@ -53,9 +62,9 @@ typedef struct {
     double xs[ROD_NX];
 } RodView;
 
-static RodView rod_view(const Model *m, const double x[ROD_NX])
+static RodView rod_view(const Model *m, double time, const double x[ROD_NX])
 {
-    RodView v = { .s = scaling(m), .p = rod_params(m) };
+    RodView v = { .s = scaling(m, time), .p = rod_params(m) };
     for (int j = 0; j < ROD_NX; ++j) v.xs[j] = (x[j] - v.s.offset[j]) / v.s.scale[j];
     return v;
 }
@@ -95,7 +104,7 @@ const char *model_check(unsigned int vr, double value)
 static void outputs(Model *m)
 {
     const double *x = m->x, l = m->l, sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), phi = x[ROD_PHI];
-    const double mg = m->m * m->g, gap = x[ROD_Y] - m->y_floor;
+    const double mg = m->m * m->g, gap = x[ROD_Y] - (m->y_floor + m->w_floor * si_floor_elapsed(m, m->time));
     double *out = m->out;
     out[SI_F_N] = mg * rod_normal_force(&m->rod, m->run.mode, m->xs);
     out[SI_F_T] = mg * rod_friction_force(&m->rod, m->run.mode, m->xs);
@@ -113,7 +122,7 @@ static void outputs(Model *m)
 void model_update(Model *m)
 {
     if (!m->stale) return;
-    const RodView r = rod_view(m, m->x);
+    const RodView r = rod_view(m, m->time, m->x);
     m->rod = r.p;
     memcpy(m->xs, r.xs, sizeof m->xs);
     derivatives(m, &r, m->x, m->dx);
@@ -130,27 +139,44 @@ void model_get_indicators(Model *m, double z[])
 
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
-    const RodView r = rod_view(m, m->x);
+    const RodView r = rod_view(m, m->time, m->x);
     rod_nominals(&r.p, nominal);
     for (int j = 0; j < ROD_NX; ++j) nominal[j] *= r.s.scale[j];
 }
 
 void model_set_time(Model *m, double time)
 {
-    (void)m, (void)time;   /* the inputs carry all the time dependence */
+    if (time == m->time) return;
+    m->time = time;
+    if (m->floor_moves && m->w_floor != 0) model_touch(m);   /* the floor has moved */
+}
+
+/* Setting y_floor puts the floor there now; a moving floor then jumps back to it. */
+bool model_input_set(Model *m, unsigned int vr, double time)
+{
+    if (vr != VR_Y_FLOOR) return false;
+    const bool moved = si_floor_elapsed(m, time) != 0 && m->w_floor != 0;
+    m->t_floor = time;
+    model_touch(m);
+    return moved;
+}
+
+void model_step_begin(Model *m, double time)
+{
+    (void)time;
+    m->floor_moves = true;
+    model_touch(m);
 }
 
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
-    (void)time;
-    const RodView r = rod_view(m, x);
+    const RodView r = rod_view(m, time, x);
     derivatives(m, &r, x, dx);
 }
 
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
-    (void)time;
-    const RodView r = rod_view(m, x);
+    const RodView r = rod_view(m, time, x);
     rod_event_indicators(&r.p, m->run.mode, r.xs, z);
 }
 
@@ -158,8 +184,7 @@ void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], 
  * the odd rows); the kinematic rows der(x) = v, der(y) = w, der(theta) = phi. */
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
 {
-    (void)time;
-    const RodView r = rod_view(m, x);
+    const RodView r = rod_view(m, time, x);
     rod_jacobian(&r.p, m->run.mode, r.xs, J);
     for (int i = 0; i < ROD_NX; ++i)
         for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? r.s.rate[i] * J[i][j] / r.s.scale[j] : 0);
@@ -180,6 +205,7 @@ void model_start(Model *m, double time, char *text, size_t size)
     model_update(m);
     rod_record_start(&m->run, &m->rod, m->xs, time);
     m->v_floor_decided = m->v_floor;
+    m->time = m->t_floor = time;   /* the floor is where y_floor says at the start */
     model_touch(m);
     rod_record_describe_start(&m->run, text, size);
 }
@@ -193,7 +219,7 @@ void model_begin_integration(Model *m)
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     model_update(m);
-    const Scaling s = scaling(m);
+    const Scaling s = scaling(m, m->time);
     double xs[ROD_NX];
     memcpy(xs, m->xs, sizeof xs);
     /* A belt that changed speed leaves the rod's own velocity as it was. */
@@ -246,5 +272,6 @@ const char *model_implausible(const Model *m)
         if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
     }
     if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
+    if (!isfinite(m->t_floor) || !isfinite(m->time)) return "t_floor";
     return rod_record_implausible(&m->run);
 }

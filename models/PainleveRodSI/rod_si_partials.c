@@ -81,7 +81,7 @@ static double through_rod(const Model *m, const RodRow *r, unsigned int known)
     if (known >= VR_X && known <= VR_PHI) return r->A * r->d_x[known - VR_X] / scale[known - VR_X];
     switch (known) {
     case VR_Y_FLOOR: return -r->A * r->d_x[ROD_Y] / m->l;
-    case VR_W_FLOOR: return -r->A * r->d_x[ROD_W] / U;
+    case VR_W_FLOOR: return -r->A * (r->d_x[ROD_W] / U + r->d_x[ROD_Y] * si_floor_elapsed(m, m->time) / m->l);
     case VR_V_FLOOR: return -r->A * r->d_x[ROD_V] / U;
     case VR_F_X: return r->A * r->d_l[ROD_L_FX] / mg;
     case VR_F_Y: return r->A * r->d_l[ROD_L_FY] / mg;
@@ -102,6 +102,7 @@ static double energy(const Model *m, unsigned int known)
     case VR_W: return m->m * vy;
     case VR_Y: return m->m * m->g + spring;
     case VR_Y_FLOOR: return -spring;
+    case VR_W_FLOOR: return -spring * si_floor_elapsed(m, m->time);
     case VR_THETA: return m->m * l * phi * (vx * cs - vy * sn) + m->m * m->g * l * cs;
     case VR_PHI: return m->m * l * (vx * sn + vy * cs) + m->J * phi;
     case VR_M: return 0.5 * (vx * vx + vy * vy) + m->g * m->out[SI_Y_CM];
@@ -152,7 +153,7 @@ double si_partial(const Model *m, unsigned int unknown, unsigned int known)
     case VR_DER_THETA: return known == VR_PHI;
     case VR_ENERGY: return energy(m, known);
     case VR_X_CM: case VR_Y_CM: case VR_VX_CM: case VR_VY_CM: return centre_of_mass(m, unknown, known);
-    case VR_GAP: return known == VR_Y ? 1 : known == VR_Y_FLOOR ? -1 : 0;
+    case VR_GAP: return known == VR_Y ? 1 : known == VR_Y_FLOOR ? -1 : known == VR_W_FLOOR ? -si_floor_elapsed(m, m->time) : 0;
     case VR_SLIP: return known == VR_V ? 1 : known == VR_V_FLOOR ? -1 : 0;
     case VR_ALPHA: case VR_EPSILON: case VR_DELTA: return calculated_parameter(m, unknown, known);
     default: return 0;

@@ -11,7 +11,7 @@ What a run gives and what the physics fixes about it (the tests' independent che
   step (`impulse_on_table`); the impulse the rod receives is, by its momentum, m (vy_cm(T) -
   vy_cm(0)) + m g T with no applied load (`impulse_on_rod`); a Jacobi master with a zero-order
   hold hands the table the rod's F_N at the start of each step, a left Riemann sum, so the two
-  differ by at most h TV(F_N), O(h) (a contact shorter than a step escapes the samples whole);
+  differ by O(h): the difference halves with the step;
 - the table's own momentum, M (z'(T) - z'(0)) = int(-K z - C z' + F0 sin(2 pi f t)) dt - the
   impulse it holds (`table_momentum_impulse`).
 """
