@@ -88,11 +88,14 @@ static fmi2Status serialize_round_trip(Inst *in)
     free(bytes);
     return worst(st, f->FreeFMUstate(in->c, &s));
 }
-/* Derivatives by states: unknowns and knowns in every state that allows the
- * call (y and theta have initial = "exact", knowns of Initialization Mode too). */
+/* Derivatives by states: the first and last <Derivatives> by their states, in
+ * every state that allows the call (states have initial = "exact": knowns of
+ * Initialization Mode too). */
 static fmi2Status directional_derivative(Inst *in)
 {
-    const fmi2ValueReference unknown[2] = { VR_DER_V, VR_DER_W }, known[2] = { VR_Y, VR_THETA };
+    const int last = MD_N_DERIVATIVES - 1;
+    const fmi2ValueReference unknown[2] = { md_var(MD_DERIVATIVES[0].index)->vr, md_var(MD_DERIVATIVES[last].index)->vr },
+                             known[2] = { md_var(md_state_index(0))->vr, md_var(md_state_index(last))->vr };
     const double seed[2] = { 1, -0.5 };
     double out[2] = { NAN, NAN };
     const fmi2Status st = f->GetDirectionalDerivative(in->c, unknown, 2, known, 2, seed, out);
@@ -131,33 +134,31 @@ static fmi2Status set_time(Inst *in)
     if (st == fmi2OK) in->t += 1e-9;
     return st;
 }
-/* The states the instance has (or its start values where they cannot be read). */
-static void current_states(Inst *in, double x[ROD_NX])
+/* The states' start values (modelDescription.xml). */
+static void start_states(double x[MODEL_NX])
 {
-    static const double START[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
-    memcpy(x, START, sizeof START);
-    double y[ROD_NX];
-    if (f->GetContinuousStates(in->c, y, ROD_NX) == fmi2OK) memcpy(x, y, sizeof y);
+    for (int i = 0; i < MODEL_NX; ++i) x[i] = md_var(md_state_index(i))->start;
 }
+/* The current states where they can be set (Continuous-Time Mode), else the start values. */
 static fmi2Status set_continuous_states(Inst *in)
 {
-    double x[ROD_NX];
-    if (in->state == ME_CONTINUOUS) current_states(in, x);
-    else memcpy(x, (double[ROD_NX]){ 0, 1, 0, 0, 1, 0.5 }, sizeof x);
-    return f->SetContinuousStates(in->c, x, ROD_NX);
+    double x[MODEL_NX];
+    start_states(x);
+    if (in->state == ME_CONTINUOUS) CHECK(f->GetContinuousStates(in->c, x, MODEL_NX) == fmi2OK, "fmi2GetContinuousStates");
+    return f->SetContinuousStates(in->c, x, MODEL_NX);
 }
 static fmi2Status get_array(Inst *in, fmi2GetDerivativesTYPE *get, size_t n)
 {
-    double v[ROD_NX + ROD_NZ];
+    double v[MODEL_NX + HARNESS_NZ];
     for (size_t i = 0; i < n; ++i) v[i] = NAN;
     const fmi2Status st = get(in->c, v, n);
     for (size_t i = 0; st == fmi2OK && i < n; ++i) CHECK(isfinite(v[i]), "element %zu = %g", i, v[i]);
     return st;
 }
-static fmi2Status get_event_indicators(Inst *in) { return get_array(in, f->GetEventIndicators, ROD_NZ); }
-static fmi2Status get_continuous_states(Inst *in) { return get_array(in, f->GetContinuousStates, ROD_NX); }
-static fmi2Status get_derivatives(Inst *in) { return get_array(in, f->GetDerivatives, ROD_NX); }
-static fmi2Status get_nominals(Inst *in) { return get_array(in, f->GetNominalsOfContinuousStates, ROD_NX); }
+static fmi2Status get_event_indicators(Inst *in) { return get_array(in, f->GetEventIndicators, MODEL_NZ); }
+static fmi2Status get_continuous_states(Inst *in) { return get_array(in, f->GetContinuousStates, MODEL_NX); }
+static fmi2Status get_derivatives(Inst *in) { return get_array(in, f->GetDerivatives, MODEL_NX); }
+static fmi2Status get_nominals(Inst *in) { return get_array(in, f->GetNominalsOfContinuousStates, MODEL_NX); }
 /* PainleveRod has no inputs and maxOutputDerivativeOrder = 0: nvr = 0 is
  * the call an importer may make. */
 static fmi2Status set_input_derivatives(Inst *in) { return f->SetRealInputDerivatives(in->c, NULL, 0, NULL, NULL); }
@@ -534,9 +535,7 @@ void test_error_state_recovery(void)
         fmi2FMUstate saved = NULL;
         const double t_saved = in.t;
         if (CHECK(f->GetFMUstate(in.c, &saved) == fmi2OK, "%s: fmi2GetFMUstate: %s", what, harness.last_message)) {
-            const fmi2ValueReference vr = VR_EPSILON;
-            const double eps = 0.5;
-            CHECK(f->SetReal(in.c, &vr, 1, &eps) == fmi2Error, "%s: epsilon set after initialization", what);
+            CHECK(set_fixed_parameter(&in) == fmi2Error, "%s: a fixed parameter set after initialization", what);
             CHECK(f->SetFMUstate(in.c, saved) == fmi2OK, "%s: %s", what, harness.last_message);
             in.t = t_saved;
             inst_works(&in, what); /* still in FROM[k] */

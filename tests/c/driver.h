@@ -31,7 +31,7 @@ bool names_call(const char *message, const char *call);
 /* ----------------------------------------------------- instance states */
 
 /* The states of the Model Exchange state machine (FMI 2.0.4 §3.2.3) and of
- * the Co-Simulation one (§4.2.4) that an instance of PainleveRod can be in:
+ * the Co-Simulation one (§4.2.4) that an instance of the model can be in:
  * stepInProgress, stepFailed and stepCanceled need asynchronous or failing
  * steps, which it does not have. Event Mode is reached two ways: right after
  * initialization, and from Continuous-Time Mode after an integration step. */
@@ -62,6 +62,10 @@ typedef struct {
  * importer makes; false (with a failed check) if that did not work. */
 bool inst_reach(Inst *in, State state, bool logging);
 
+/* The first fixed Real parameter of modelDescription.xml set to its start
+ * value: an error once initialization has ended (FMI 2.0.4 §3.2.3). */
+fmi2Status set_fixed_parameter(Inst *in);
+
 /* fmi2FreeInstance, and a check that every block it allocated is freed. */
 void inst_free(Inst *in);
 
@@ -82,5 +86,6 @@ void test_conformance_variables(void);       /* conformance_table.c */
 void test_conformance_null_instance(void);   /* conformance_table.c */
 void test_error_state_recovery(void);        /* conformance_table.c */
 void test_directional_derivatives(void);     /* conformance_directional.c */
+void test_inputs(void);                      /* input_checks.c */
 
 #endif
