@@ -15,9 +15,6 @@ extern FmiApi api; /* loaded by main */
 
 bool check_(bool ok, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
-/* The Real variables come first (config.h): value references 0 .. N_REALS - 1. */
-#define N_REALS VR_MODE
-
 #define CHECK(cond, ...) check_((cond), __FILE__, __LINE__, __VA_ARGS__)
 
 extern long checks, failures;
