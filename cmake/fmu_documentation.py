@@ -53,6 +53,15 @@ def page(md):
     experiment = md.find("DefaultExperiment")
     interfaces = [tag for tag in ("ModelExchange", "CoSimulation") if md.find(tag) is not None]
     title = f"{md.get('modelName')} {md.get('version') or ''}".strip()
+    # The rod's models cite the paper (in any units); another model (ShakerTable) is only itself.
+    rod = (md.get("modelName") or "").startswith("PainleveRod")
+    citation = f"<p>The model of {html.escape(CITATION)}.</p>\n" if rod else ""
+    if any(name == "dimensionless" for name, _ in units):
+        scales = ("<p>Dimensionless in the paper's scales: lengths in the half-length l, time in T = sqrt(l/g), "
+                  "forces in m g;\nangles in radians.</p>")
+    else:
+        scales = "<p>SI units.</p>"
+    equations = "; the repository's docs/model.md has the equations." if rod else "."
     return f"""<!DOCTYPE html>
 <html lang="en">
 <head><meta charset="utf-8"><title>{html.escape(title)}</title>
@@ -61,17 +70,15 @@ table{{border-collapse:collapse}}</style></head>
 <body>
 <h1>{html.escape(title)}</h1>
 <p>{html.escape(md.get('description') or '')}</p>
-<p>The model of {html.escape(CITATION)}.</p>
-<p>Interfaces: {html.escape(', '.join(interfaces))}. Default experiment:
+{citation}<p>Interfaces: {html.escape(', '.join(interfaces))}. Default experiment:
 {html.escape(', '.join(f'{k} = {v}' for k, v in (experiment.attrib.items() if experiment is not None else [])))}.</p>
 <h2>Units</h2>
-<p>Dimensionless in the paper's scales: lengths in the half-length l, time in T = sqrt(l/g), forces in m g;
-angles in radians.</p>
+{scales}
 {table(("unit", "base unit exponents"), units)}
 <h2>Variables</h2>
 {table(("name", "causality", "variability", "type", "unit", "start", "min", "max", "description"),
        variable_rows(md))}
-<p>Made from modelDescription.xml when the FMU was built; the repository's docs/model.md has the equations.</p>
+<p>Made from modelDescription.xml when the FMU was built{equations}</p>
 </body>
 </html>
 """

@@ -29,43 +29,19 @@
     VARIABLE(MU, "mu", REAL, PARAMETER, params.mu, 0, 1e6)                                         \
     VARIABLE(DELTA, "delta", REAL, PARAMETER, params.delta, 0, 1e6)                                \
     VARIABLE(EPSILON, "epsilon", REAL, PARAMETER, params.epsilon, 1e-8, 1)                         \
-    VARIABLE(X, "x", REAL, STATE, x[ROD_X], -STATE_BOUND, STATE_BOUND)                             \
-    VARIABLE(V, "v", REAL, STATE, x[ROD_V], -STATE_BOUND, STATE_BOUND)                             \
-    VARIABLE(Y, "y", REAL, STATE, x[ROD_Y], -STATE_BOUND, STATE_BOUND)                             \
-    VARIABLE(W, "w", REAL, STATE, x[ROD_W], -STATE_BOUND, STATE_BOUND)                             \
-    VARIABLE(THETA, "theta", REAL, STATE, x[ROD_THETA], -STATE_BOUND, STATE_BOUND)                 \
-    VARIABLE(PHI, "phi", REAL, STATE, x[ROD_PHI], -STATE_BOUND, STATE_BOUND)                       \
-    VARIABLE(DER_X, "der(x)", REAL, CALCULATED, dx[ROD_X], 0, 0)                                   \
-    VARIABLE(DER_V, "der(v)", REAL, CALCULATED, dx[ROD_V], 0, 0)                                   \
-    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ROD_Y], 0, 0)                                   \
-    VARIABLE(DER_W, "der(w)", REAL, CALCULATED, dx[ROD_W], 0, 0)                                   \
-    VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
-    VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)                             \
+    ROD_STATE_VARIABLES(VARIABLE, STATE_BOUND)                                                     \
     VARIABLE(F_N, "F_N", REAL, CALCULATED, out[ROD_OUT_F_N], 0, 0)                                 \
     VARIABLE(F_T, "F_T", REAL, CALCULATED, out[ROD_OUT_F_T], 0, 0)                                 \
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[ROD_OUT_ENERGY], 0, 0)                        \
-    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, run.t_switch, 0, 0)                                 \
-    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, run.t_stick_begin, 0, 0)                  \
-    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, run.t_stick_end, 0, 0)                        \
-    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, run.t_contact_begin, 0, 0)            \
-    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, run.t_contact_end, 0, 0)                  \
+    ROD_RECORD_TIMES(VARIABLE)                                                                     \
     VARIABLE(KAPPA, "kappa", REAL, PARAMETER, params.kappa, 0, 1e6)                                \
     VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
-    VARIABLE(MODE, "mode", INTEGER, DISCRETE, run.mode.slip, 0, 0)                                     \
-    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, run.switches, 0, 0)                              \
-    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, run.sticks, 0, 0)                                    \
-    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, run.mode.contact, 0, 0)
+    ROD_RECORD_MODES(VARIABLE)
 
 /* The model's data beyond its variables that an FMU state must carry
  * (the event log's reference and the event guard): INTERNAL(name, field, type). */
 #define MODEL_INTERNALS(INTERNAL)                         \
-    INTERNAL("z_at_restart0", run.z_at_restart[0], REAL)      \
-    INTERNAL("z_at_restart1", run.z_at_restart[1], REAL)      \
-    INTERNAL("z_at_restart2", run.z_at_restart[2], REAL)      \
-    INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)      \
-    INTERNAL("initial_event", run.initial_event, BOOLEAN)     \
-    INTERNAL("instant", run.instant, REAL)                    \
-    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
+    ROD_RECORD_INTERNALS(INTERNAL)
 
 /* The model's data: parameters, states, modes, what the events record, and
  * derived values and partial derivatives cached until a change marks them stale. Plain data with no

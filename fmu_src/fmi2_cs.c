@@ -26,7 +26,7 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
     (void)vr, (void)order, (void)value;
     BEGIN("fmi2SetRealInputDerivatives", BEFORE_INIT_ENDS | StepMode);
     INTERFACE("fmi2SetRealInputDerivatives", CO_SIMULATION, "Co-Simulation");
-    REQUIRE("fmi2SetRealInputDerivatives", nvr == 0, "%s has no inputs (canInterpolateInputs is false)", MODEL_NAME);
+    REQUIRE("fmi2SetRealInputDerivatives", nvr == 0, "%s does not interpolate inputs (canInterpolateInputs is false)", MODEL_NAME);
     return fmi2OK;
 }
 

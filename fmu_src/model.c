@@ -31,25 +31,7 @@ const char *model_check(unsigned int vr, double value)
     return model_check_range(vr, value);
 }
 
-/* Whatever changed, the cached values follow it when next asked for. */
-static void touch(Model *m)
-{
-    m->stale = m->partials_stale = true;
-}
-
-void model_set(Model *m, unsigned int vr, double value)
-{
-    model_assign(m, vr, value);
-    touch(m);
-}
-
-void model_restore(Model *m, const Model *saved)
-{
-    *m = *saved;
-    touch(m);
-}
-
-static void update_derived(Model *m)
+void model_update(Model *m)
 {
     if (!m->stale) return;
     rod_derivatives(&m->params, m->run.mode, m->x, m->dx);
@@ -60,39 +42,9 @@ static void update_derived(Model *m)
     m->stale = false;
 }
 
-double model_get(Model *m, unsigned int vr)
-{
-    update_derived(m);
-    return model_stored(m, vr);
-}
-
-/* ---------------------------------------------------- continuous states */
-
-unsigned int model_state_vr(size_t i)
-{
-    return VR_X + (unsigned int)i;
-}
-
-void model_get_states(const Model *m, double x[MODEL_NX])
-{
-    memcpy(x, m->x, sizeof m->x);
-}
-
-void model_set_states(Model *m, const double x[MODEL_NX])
-{
-    memcpy(m->x, x, sizeof m->x);
-    touch(m);
-}
-
-void model_get_derivatives(Model *m, double dx[MODEL_NX])
-{
-    update_derived(m);
-    memcpy(dx, m->dx, sizeof m->dx);
-}
-
 void model_get_indicators(Model *m, double z[])
 {
-    update_derived(m);
+    model_update(m);
     memcpy(z, m->z, sizeof m->z);
 }
 
@@ -129,27 +81,27 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
 void model_decide_initial_mode(Model *m)
 {
     m->run.mode = rod_initial_mode(&m->params, m->x);
-    touch(m);
+    model_touch(m);
 }
 
 void model_start(Model *m, double time)
 {
     rod_record_start(&m->run, &m->params, m->x, time);
-    touch(m);
+    model_touch(m);
 }
 
 void model_begin_integration(Model *m)
 {
-    update_derived(m);
+    model_update(m);
     memcpy(m->run.z_at_restart, m->z, sizeof m->z);
 }
 
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
-    update_derived(m);
+    model_update(m);
     RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, &r);
-    touch(m);
+    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, &r);
+    model_touch(m);
     e->switched = r.switched;
     e->states_changed = r.states_changed;
     snprintf(e->text, sizeof e->text, "%s", r.text);

@@ -53,9 +53,14 @@ const char *model_check(unsigned int vr, double value);
 void model_set(Model *m, unsigned int vr, double value);
 double model_get(Model *m, unsigned int vr);
 
-/* For the models' own files (model_table.c, from config.h's list): a variable's
+/* For the models' own files (model_common.c, from config.h's list): a variable's
  * field written (settable kinds only) and read, and the range check every
- * settable variable gets (NULL if value is finite and within [min, max]). */
+ * settable variable gets (NULL if value is finite and within [min, max]).
+ * A model's Model has the fields x[MODEL_NX], dx[MODEL_NX], stale and partials_stale; model_update computes what it derives
+ * (dx, z, outputs) when stale; model_touch marks it stale: whatever changed,
+ * the derived values follow it when next asked for. */
+void model_update(Model *m);
+void model_touch(Model *m);
 void model_assign(Model *m, unsigned int vr, double value);
 double model_stored(const Model *m, unsigned int vr);
 const char *model_check_range(unsigned int vr, double value);

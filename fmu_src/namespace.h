@@ -75,6 +75,8 @@
 #define model_start NAMESPACED(model_start)
 #define model_state_vr NAMESPACED(model_state_vr)
 #define model_stored NAMESPACED(model_stored)
+#define model_touch NAMESPACED(model_touch)
+#define model_update NAMESPACED(model_update)
 #define model_variable NAMESPACED(model_variable)
 
 /* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */

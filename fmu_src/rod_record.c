@@ -59,12 +59,13 @@ static void record_switch(RodRecord *r, RodMode before, double time)
 }
 
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      RodEvent *e)
+                      bool floor_jumped, RodEvent *e)
 {
     char fired[512];
     describe_fired(r, z, fired, sizeof fired);
     r->initial_event = false;
     const RodMode before = r->mode;
+    if (floor_jumped && x[ROD_V] != 0) r->mode.slip = x[ROD_V] > 0 ? +1 : -1;
     bool moved;
     const RodEventResult result = rod_event_update(p, &r->mode, x, &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;

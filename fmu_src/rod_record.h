@@ -26,6 +26,45 @@ typedef struct {
     int events_at_instant;
 } RodRecord;
 
+/* A rod model's continuous states (its Model's x, within +-BOUND) and their
+ * derivatives (dx), for its config.h list, in the order of rod.h. */
+#define ROD_STATE_VARIABLES(VARIABLE, BOUND)                                                       \
+    VARIABLE(X, "x", REAL, STATE, x[ROD_X], -(BOUND), BOUND)                                       \
+    VARIABLE(V, "v", REAL, STATE, x[ROD_V], -(BOUND), BOUND)                                       \
+    VARIABLE(Y, "y", REAL, STATE, x[ROD_Y], -(BOUND), BOUND)                                       \
+    VARIABLE(W, "w", REAL, STATE, x[ROD_W], -(BOUND), BOUND)                                       \
+    VARIABLE(THETA, "theta", REAL, STATE, x[ROD_THETA], -(BOUND), BOUND)                           \
+    VARIABLE(PHI, "phi", REAL, STATE, x[ROD_PHI], -(BOUND), BOUND)                                 \
+    VARIABLE(DER_X, "der(x)", REAL, CALCULATED, dx[ROD_X], 0, 0)                                   \
+    VARIABLE(DER_V, "der(v)", REAL, CALCULATED, dx[ROD_V], 0, 0)                                   \
+    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ROD_Y], 0, 0)                                   \
+    VARIABLE(DER_W, "der(w)", REAL, CALCULATED, dx[ROD_W], 0, 0)                                   \
+    VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
+    VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)
+
+/* The record's variables and internals for a model's config.h lists (the
+ * Model's RodRecord field is `run`): the times of the last switches (Reals),
+ * the mode and counts (Integers, Boolean), what an FMU state carries beyond. */
+#define ROD_RECORD_TIMES(VARIABLE)                                                                 \
+    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, run.t_switch, 0, 0)                             \
+    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, run.t_stick_begin, 0, 0)              \
+    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, run.t_stick_end, 0, 0)                    \
+    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, run.t_contact_begin, 0, 0)        \
+    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, run.t_contact_end, 0, 0)
+#define ROD_RECORD_MODES(VARIABLE)                                                                 \
+    VARIABLE(MODE, "mode", INTEGER, DISCRETE, run.mode.slip, 0, 0)                                 \
+    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, run.switches, 0, 0)                          \
+    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, run.sticks, 0, 0)                                \
+    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, run.mode.contact, 0, 0)
+#define ROD_RECORD_INTERNALS(INTERNAL)                            \
+    INTERNAL("z_at_restart0", run.z_at_restart[0], REAL)          \
+    INTERNAL("z_at_restart1", run.z_at_restart[1], REAL)          \
+    INTERNAL("z_at_restart2", run.z_at_restart[2], REAL)          \
+    INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)          \
+    INTERNAL("initial_event", run.initial_event, BOOLEAN)         \
+    INTERNAL("instant", run.instant, REAL)                        \
+    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
+
 /* Before initialization: the default mode, no record. */
 RodRecord rod_record_new(void);
 
@@ -42,10 +81,12 @@ typedef struct {
 } RodEvent;
 
 /* The event update at `time` (rod_event_update), recorded; z holds the indicators
- * at the event. False, with the reason in e->text, if the modes do not settle or
- * too many events fall on one instant. */
+ * at the event. With `floor_jumped` (the floor's speed changed by an input, not
+ * at a located v = 0) the rod slips the way its new relative velocity points,
+ * as at the start, and the rules go on from there. False, with the reason in
+ * e->text, if the modes do not settle or too many events fall on one instant. */
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      RodEvent *e);
+                      bool floor_jumped, RodEvent *e);
 
 /* NULL if r (restored from bytes) is a record this model can have, else the
  * name of the first variable that is not. */

@@ -38,18 +38,7 @@
     VARIABLE(F_X, "F_x", REAL, INPUT, F_x, -SI_BOUND, SI_BOUND)                                    \
     VARIABLE(F_Y, "F_y", REAL, INPUT, F_y, -SI_BOUND, SI_BOUND)                                    \
     VARIABLE(TAU, "tau", REAL, INPUT, tau, -SI_BOUND, SI_BOUND)                                    \
-    VARIABLE(X, "x", REAL, STATE, x[ROD_X], -SI_BOUND, SI_BOUND)                                   \
-    VARIABLE(V, "v", REAL, STATE, x[ROD_V], -SI_BOUND, SI_BOUND)                                   \
-    VARIABLE(Y, "y", REAL, STATE, x[ROD_Y], -SI_BOUND, SI_BOUND)                                   \
-    VARIABLE(W, "w", REAL, STATE, x[ROD_W], -SI_BOUND, SI_BOUND)                                   \
-    VARIABLE(THETA, "theta", REAL, STATE, x[ROD_THETA], -SI_BOUND, SI_BOUND)                       \
-    VARIABLE(PHI, "phi", REAL, STATE, x[ROD_PHI], -SI_BOUND, SI_BOUND)                             \
-    VARIABLE(DER_X, "der(x)", REAL, CALCULATED, dx[ROD_X], 0, 0)                                   \
-    VARIABLE(DER_V, "der(v)", REAL, CALCULATED, dx[ROD_V], 0, 0)                                   \
-    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ROD_Y], 0, 0)                                   \
-    VARIABLE(DER_W, "der(w)", REAL, CALCULATED, dx[ROD_W], 0, 0)                                   \
-    VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
-    VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)                             \
+    ROD_STATE_VARIABLES(VARIABLE, SI_BOUND)                                                        \
     VARIABLE(F_N, "F_N", REAL, CALCULATED, out[SI_F_N], 0, 0)                                      \
     VARIABLE(F_T, "F_T", REAL, CALCULATED, out[SI_F_T], 0, 0)                                      \
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[SI_ENERGY], 0, 0)                             \
@@ -59,24 +48,12 @@
     VARIABLE(VY_CM, "vy_cm", REAL, CALCULATED, out[SI_VY_CM], 0, 0)                                \
     VARIABLE(GAP, "gap", REAL, CALCULATED, out[SI_GAP], 0, 0)                                      \
     VARIABLE(SLIP, "slip", REAL, CALCULATED, out[SI_SLIP], 0, 0)                                   \
-    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, run.t_switch, 0, 0)                             \
-    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, run.t_stick_begin, 0, 0)              \
-    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, run.t_stick_end, 0, 0)                    \
-    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, run.t_contact_begin, 0, 0)        \
-    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, run.t_contact_end, 0, 0)              \
-    VARIABLE(MODE, "mode", INTEGER, DISCRETE, run.mode.slip, 0, 0)                                 \
-    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, run.switches, 0, 0)                          \
-    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, run.sticks, 0, 0)                                \
-    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, run.mode.contact, 0, 0)
+    ROD_RECORD_TIMES(VARIABLE)                                                                     \
+    ROD_RECORD_MODES(VARIABLE)
 
 #define MODEL_INTERNALS(INTERNAL)                             \
-    INTERNAL("z_at_restart0", run.z_at_restart[0], REAL)      \
-    INTERNAL("z_at_restart1", run.z_at_restart[1], REAL)      \
-    INTERNAL("z_at_restart2", run.z_at_restart[2], REAL)      \
-    INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)      \
-    INTERNAL("initial_event", run.initial_event, BOOLEAN)     \
-    INTERNAL("instant", run.instant, REAL)                    \
-    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
+    ROD_RECORD_INTERNALS(INTERNAL) \
+    INTERNAL("v_floor_decided", v_floor_decided, REAL)
 
 /* Outputs beyond the states and derivatives. */
 enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_NOUT };
@@ -90,6 +67,7 @@ typedef struct {
     double y_floor, w_floor, v_floor, F_x, F_y, tau;
     double x[ROD_NX];
     RodRecord run;
+    double v_floor_decided; /* the belt speed the mode was last decided for */
     bool stale, partials_stale;
     RodParams rod;        /* alpha, mu, delta, epsilon and the loads in units of m g, m g l */
     double xs[ROD_NX];    /* the state in the paper's units, in the floor's frame */

@@ -46,23 +46,30 @@ static RodParams rod_params(const Model *m)
                         .f_x = m->F_x / mg, .f_y = m->F_y / mg, .tau = m->tau / (mg * m->l) };
 }
 
-static void to_rod(const Scaling *s, const double x[ROD_NX], double xs[ROD_NX])
+/* The rod's view of an SI state x: the scaling, the rod's parameters and the scaled state. */
+typedef struct {
+    Scaling s;
+    RodParams p;
+    double xs[ROD_NX];
+} RodView;
+
+static RodView rod_view(const Model *m, const double x[ROD_NX])
 {
-    for (int j = 0; j < ROD_NX; ++j) xs[j] = (x[j] - s->offset[j]) / s->scale[j];
+    RodView v = { .s = scaling(m), .p = rod_params(m) };
+    for (int j = 0; j < ROD_NX; ++j) v.xs[j] = (x[j] - v.s.offset[j]) / v.s.scale[j];
+    return v;
 }
 
 /* The SI right-hand side from the rod's: der(x) = v, der(y) = w, der(theta) = phi
  * in the ground's frame, accelerations scaled. */
-static void derivatives(const Model *m, const RodParams *p, const Scaling *s, const double x[ROD_NX],
-                        double dx[ROD_NX])
+static void derivatives(const Model *m, const RodView *r, const double x[ROD_NX], double dx[ROD_NX])
 {
-    double xs[ROD_NX], dxs[ROD_NX];
-    to_rod(s, x, xs);
-    rod_derivatives(p, m->run.mode, xs, dxs);
+    double dxs[ROD_NX];
+    rod_derivatives(&r->p, m->run.mode, r->xs, dxs);
     dx[ROD_X] = x[ROD_V];
     dx[ROD_Y] = x[ROD_W];
     dx[ROD_THETA] = x[ROD_PHI];
-    for (int j = ROD_V; j <= ROD_PHI; j += 2) dx[j] = s->rate[j] * dxs[j];
+    for (int j = ROD_V; j <= ROD_PHI; j += 2) dx[j] = r->s.rate[j] * dxs[j];
 }
 
 /* ------------------------------------------------------------ variables */
@@ -81,23 +88,6 @@ void model_reset(Model *m)
 const char *model_check(unsigned int vr, double value)
 {
     return model_check_range(vr, value);
-}
-
-static void touch(Model *m)
-{
-    m->stale = m->partials_stale = true;
-}
-
-void model_set(Model *m, unsigned int vr, double value)
-{
-    model_assign(m, vr, value);
-    touch(m);
-}
-
-void model_restore(Model *m, const Model *saved)
-{
-    *m = *saved;
-    touch(m);
 }
 
 /* Mechanical energy in the ground's frame plus the contact spring's while it
@@ -120,61 +110,29 @@ static void outputs(Model *m)
                      0.5 * m->J * phi * phi + mg * out[SI_Y_CM] + spring;
 }
 
-static void update_derived(Model *m)
+void model_update(Model *m)
 {
     if (!m->stale) return;
-    const Scaling s = scaling(m);
-    m->rod = rod_params(m);
-    to_rod(&s, m->x, m->xs);
-    derivatives(m, &m->rod, &s, m->x, m->dx);
+    const RodView r = rod_view(m, m->x);
+    m->rod = r.p;
+    memcpy(m->xs, r.xs, sizeof m->xs);
+    derivatives(m, &r, m->x, m->dx);
     rod_event_indicators(&m->rod, m->run.mode, m->xs, m->z);
     outputs(m);
     m->stale = false;
 }
 
-double model_get(Model *m, unsigned int vr)
-{
-    update_derived(m);
-    return model_stored(m, vr);
-}
-
-/* ---------------------------------------------------- continuous states */
-
-unsigned int model_state_vr(size_t i)
-{
-    return VR_X + (unsigned int)i;
-}
-
-void model_get_states(const Model *m, double x[MODEL_NX])
-{
-    memcpy(x, m->x, sizeof m->x);
-}
-
-void model_set_states(Model *m, const double x[MODEL_NX])
-{
-    memcpy(m->x, x, sizeof m->x);
-    touch(m);
-}
-
-void model_get_derivatives(Model *m, double dx[MODEL_NX])
-{
-    update_derived(m);
-    memcpy(dx, m->dx, sizeof m->dx);
-}
-
 void model_get_indicators(Model *m, double z[])
 {
-    update_derived(m);
+    model_update(m);
     memcpy(z, m->z, sizeof m->z);
 }
 
-/* The rod's nominals (the contact's y ~ eps^2, w ~ eps) in SI units. */
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
-    const Scaling s = scaling(m);
-    const RodParams p = rod_params(m);
-    rod_nominals(&p, nominal);
-    for (int j = 0; j < ROD_NX; ++j) nominal[j] *= s.scale[j];
+    const RodView r = rod_view(m, m->x);
+    rod_nominals(&r.p, nominal);
+    for (int j = 0; j < ROD_NX; ++j) nominal[j] *= r.s.scale[j];
 }
 
 void model_set_time(Model *m, double time)
@@ -185,19 +143,15 @@ void model_set_time(Model *m, double time)
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     (void)time;
-    const Scaling s = scaling(m);
-    const RodParams p = rod_params(m);
-    derivatives(m, &p, &s, x, dx);
+    const RodView r = rod_view(m, x);
+    derivatives(m, &r, x, dx);
 }
 
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
     (void)time;
-    const Scaling s = scaling(m);
-    const RodParams p = rod_params(m);
-    double xs[ROD_NX];
-    to_rod(&s, x, xs);
-    rod_event_indicators(&p, m->run.mode, xs, z);
+    const RodView r = rod_view(m, x);
+    rod_event_indicators(&r.p, m->run.mode, r.xs, z);
 }
 
 /* d der(x_i)/d x_j = rate_i J_s[i][j]/scale_j for the accelerations (v, w, phi:
@@ -205,13 +159,10 @@ void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], 
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
 {
     (void)time;
-    const Scaling s = scaling(m);
-    const RodParams p = rod_params(m);
-    double xs[ROD_NX];
-    to_rod(&s, x, xs);
-    rod_jacobian(&p, m->run.mode, xs, J);
+    const RodView r = rod_view(m, x);
+    rod_jacobian(&r.p, m->run.mode, r.xs, J);
     for (int i = 0; i < ROD_NX; ++i)
-        for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? s.rate[i] * J[i][j] / s.scale[j] : 0);
+        for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? r.s.rate[i] * J[i][j] / r.s.scale[j] : 0);
     J[ROD_X][ROD_V] = J[ROD_Y][ROD_W] = J[ROD_THETA][ROD_PHI] = 1;
 }
 
@@ -219,36 +170,40 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
 
 void model_decide_initial_mode(Model *m)
 {
-    update_derived(m);
+    model_update(m);
     m->run.mode = rod_initial_mode(&m->rod, m->xs);
-    touch(m);
+    model_touch(m);
 }
 
 void model_start(Model *m, double time)
 {
-    update_derived(m);
+    model_update(m);
     rod_record_start(&m->run, &m->rod, m->xs, time);
-    touch(m);
+    m->v_floor_decided = m->v_floor;
+    model_touch(m);
 }
 
 void model_begin_integration(Model *m)
 {
-    update_derived(m);
+    model_update(m);
     memcpy(m->run.z_at_restart, m->z, sizeof m->z);
 }
 
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
-    update_derived(m);
+    model_update(m);
     const Scaling s = scaling(m);
     double xs[ROD_NX];
     memcpy(xs, m->xs, sizeof xs);
+    /* A belt that changed speed leaves the rod's own velocity as it was. */
+    const bool belt_jumped = m->v_floor != m->v_floor_decided;
+    m->v_floor_decided = m->v_floor;
     RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, &r);
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, &r);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
-    touch(m);
+    model_touch(m);
     e->switched = r.switched;
     e->states_changed = r.states_changed;
     snprintf(e->text, sizeof e->text, "%s", r.text);
@@ -272,7 +227,7 @@ const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned in
         *value = 0;
         return NULL;
     }
-    update_derived(m);
+    model_update(m);
     if (m->partials_stale) {
         rod_partials(&m->rod, m->run.mode, m->xs, &m->partials);
         m->partials_stale = false;
@@ -289,5 +244,6 @@ const char *model_implausible(const Model *m)
         const VariableInfo *info = model_variable(vr);
         if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
     }
+    if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
     return rod_record_implausible(&m->run);
 }

@@ -1,9 +1,12 @@
-/* What a model's variable list (its config.h's MODEL_VARIABLES) gives the
- * model interface, made once for every model: the table of variables, a
- * variable's field read and written, and the fields an FMU state holds. */
+/* What every model shares, made once from its config.h: the table of its
+ * variables (MODEL_VARIABLES), a variable's field read and written, the fields
+ * an FMU state holds, and the accessors of the states and of what the model
+ * derives from them (model.h: the Model's x, dx, stale, partials_stale and its
+ * model_update). */
 #include "model.h"
 
 #include <math.h>
+#include <string.h>
 
 #define MODEL_INFO(id, name, type, kind, field, min, max) [VR_##id] = { name, TYPE_##type, KIND_##kind, min, max },
 static const VariableInfo VARIABLES[VR_COUNT] = { MODEL_VARIABLES(MODEL_INFO) };
@@ -58,3 +61,52 @@ const char *model_check_range(unsigned int vr, double value)
 #define INTERNAL_FIELD(name, field, type) { name, offsetof(Model, field), TYPE_##type },
 const ModelField model_fields[] = { MODEL_VARIABLES(MODEL_FIELD) MODEL_INTERNALS(INTERNAL_FIELD) };
 const size_t model_n_fields = sizeof model_fields / sizeof model_fields[0];
+
+/* ----------------------------------------------------- states, derived values */
+
+void model_touch(Model *m)
+{
+    m->stale = m->partials_stale = true;
+}
+
+void model_set(Model *m, unsigned int vr, double value)
+{
+    model_assign(m, vr, value);
+    model_touch(m);
+}
+
+void model_restore(Model *m, const Model *saved)
+{
+    *m = *saved;
+    model_touch(m);
+}
+
+double model_get(Model *m, unsigned int vr)
+{
+    model_update(m);
+    return model_stored(m, vr);
+}
+
+unsigned int model_state_vr(size_t i)
+{
+    for (unsigned int vr = 0; vr < VR_COUNT; ++vr)
+        if (VARIABLES[vr].kind == KIND_STATE && i-- == 0) return vr;
+    return VR_COUNT;
+}
+
+void model_get_states(const Model *m, double x[MODEL_NX])
+{
+    memcpy(x, m->x, sizeof m->x);
+}
+
+void model_set_states(Model *m, const double x[MODEL_NX])
+{
+    memcpy(m->x, x, sizeof m->x);
+    model_touch(m);
+}
+
+void model_get_derivatives(Model *m, double dx[MODEL_NX])
+{
+    model_update(m);
+    memcpy(dx, m->dx, sizeof m->dx);
+}
