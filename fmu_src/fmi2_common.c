@@ -190,16 +190,9 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     static const char call[] = "fmi2SetReal";
     BEGIN(call, BEFORE_INIT_ENDS | SIMULATING | StepMode);
     if (check_arrays(in, call, vr, nvr, value) != fmi2OK) return fmi2Error;
-    /* Check all, then set all: a rejected call changes nothing. Before
-     * fmi2EnterInitializationMode only start values may be set (FMI 2.0.4
-     * §3.2.3 and §4.2.4, condition 1: initial = "exact" or "approx"), which an
-     * input, having no initial, is not; FMI 3.0 allows it (instance.c). */
-    for (size_t i = 0; i < nvr; ++i) {
-        const VariableInfo *info = model_variable(vr[i]);
-        REQUIRE(call, !(in->state == Instantiated && info && info->kind == KIND_INPUT),
-                "%s is an input: FMI 2.0 sets inputs from fmi2EnterInitializationMode on", info->name);
+    /* Check all, then set all: a rejected call changes nothing. */
+    for (size_t i = 0; i < nvr; ++i)
         if (instance_check_set(in, call, vr[i], TYPE_REAL, value[i]) != STATUS_OK) return fmi2Error;
-    }
     for (size_t i = 0; i < nvr; ++i) instance_set(in, vr[i], value[i]);
     return fmi2OK;
 }

@@ -413,8 +413,13 @@ static bool set_allowed(State s, int index)
     const bool input = v->causality == MD_INPUT;
     const bool tunable_parameter = v->causality == MD_PARAMETER && v->variability == MD_TUNABLE;
     switch (s) {
-    case ME_INSTANTIATED: case CS_INSTANTIATED: /* 1 */
-        return not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX);
+    case ME_INSTANTIATED: case CS_INSTANTIATED: /* 1, and a deliberate leniency for inputs */
+        /* Condition 1 leaves inputs out (they have no initial; FMI 2.0.1 made it
+         * explicit, fmi-standard #440), but fmpy sets them there (its
+         * settable_in_instantiated, for start_values), as fmusim did
+         * (Reference-FMUs #511), and FMI 3.0 allows it: the FMUs accept an input
+         * before initialization and use it (input_checks.c). */
+        return (not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX)) || input;
     case ME_INIT: case CS_INIT: /* 3 */
         return (not_constant && v->initial == MD_INITIAL_EXACT) || input;
     case ME_EVENT: case ME_EVENT_AGAIN: case CS_STEP_COMPLETE: /* 4, 6 */

@@ -385,7 +385,8 @@ static bool first_settable(const MdVariable *v, State *state)
 static void test_bad_values_of_variables(void)
 {
     static const double BAD_EVERYWHERE[] = { NAN, -NAN, INFINITY, -INFINITY, DBL_MAX, -DBL_MAX };
-    static const State INPUT_STATES[] = { ME_EVENT, ME_CONTINUOUS, CS_INIT, CS_STEP_COMPLETE };
+    static const State INPUT_STATES[] = { ME_INSTANTIATED, ME_EVENT, ME_CONTINUOUS, CS_INSTANTIATED, CS_INIT,
+                                          CS_STEP_COMPLETE };
     for (int index = 1; index <= MD_N_VARIABLES; ++index) {
         const MdVariable *v = md_var(index);
         State state;
