@@ -26,8 +26,10 @@ static const FmiApi *const f = &api;
 
 enum { MAX_VARS = 64 };
 
-/* Central differences (steps of 1e-4 relative) and the analytic partials
- * agree to this, relative to the largest entry of the unknown's row. */
+/* Central differences (steps of 1e-4 of the known's size) and the analytic
+ * partials agree to this: the change each makes in the unknown for a change
+ * of its known by the known's size, relative to the largest such change of
+ * the unknown's row (knowns of different units compare by what they do). */
 #define DIFFERENCE_TOLERANCE 1e-6
 
 /* A state inside one mode of the model, away from its switching surfaces
@@ -133,12 +135,19 @@ static double known_value(Inst *in, int index)
     return md_var(index)->start;
 }
 
+/* The size of known `index` at the instance's point: its value, or its
+ * nominal where that is larger (a state at 0). */
+static double known_size(Inst *in, int index, double nominal)
+{
+    return fmax(fabs(known_value(in, index)), nominal);
+}
+
 /* d unknown / d known by central differences of fmi2GetReal. */
 static double central_difference(Inst *in, int unknown, int known, double nominal)
 {
     const double x0 = known_value(in, known);
     /* Small against the distance to the mode's surfaces, large against rounding. */
-    const double h = 1e-4 * fmax(fabs(x0), nominal);
+    const double h = 1e-4 * known_size(in, known, nominal);
     set_known(in, known, x0 + h);
     const double plus = read_real(in, unknown);
     set_known(in, known, x0 - h);
@@ -164,7 +173,9 @@ static void check_defined_pairs(State state)
     for (int i = 0; i < nu; ++i) {
         const MdUnknown *u = md_unknown_of_mode(mode, unknowns[i]);
         const char *uname = md_var(unknowns[i])->name;
-        double fd[MAX_VARS], scale = 1e-300;
+        /* The knowns have units of their own: each partial is weighed by its
+         * known's size, the change it makes in the unknown. */
+        double fd[MAX_VARS], size[MAX_VARS], scale = 1e-300;
         for (int j = 0; j < nk; ++j) {
             const char *kname = md_var(knowns[j])->name;
             const fmi2Status st = partial(&in, unknowns[i], knowns[j], &J[i][j]);
@@ -174,6 +185,7 @@ static void check_defined_pairs(State state)
                 if (!reach(&in, state)) return;
                 J[i][j] = 0;
                 fd[j] = 0;
+                size[j] = 0;
                 continue;
             }
             CHECK(isfinite(J[i][j]), "d %s / d %s = %g in %s", uname, kname, J[i][j], STATE_NAME[state]);
@@ -183,19 +195,21 @@ static void check_defined_pairs(State state)
             const int position = md_state_position(knowns[j]);
             const double nom = position >= 0 ? nominal[position] : 1e-6;
             fd[j] = differences ? central_difference(&in, unknowns[i], knowns[j], nom) : 0;
-            scale = fmax(scale, fmax(fabs(fd[j]), fabs(J[i][j])));
+            size[j] = differences ? known_size(&in, knowns[j], nom) : 1;
+            scale = fmax(scale, fmax(fabs(fd[j]), fabs(J[i][j])) * size[j]);
         }
         /* Declared pairs against the differences; undeclared ones, exactly 0 from
          * the FMU, must be 0 by differences too: else the XML misses a dependency. */
         for (int j = 0; differences && j < nk; ++j) {
             if (md_depends(u, knowns[j]))
-                CHECK(fabs(J[i][j] - fd[j]) <= DIFFERENCE_TOLERANCE * scale,
+                CHECK(fabs(J[i][j] - fd[j]) * size[j] <= DIFFERENCE_TOLERANCE * scale,
                       "d %s / d %s = %.10g in %s, central differences %.10g", uname, md_var(knowns[j])->name, J[i][j],
                       STATE_NAME[state], fd[j]);
             else
-                CHECK(fabs(fd[j]) <= DIFFERENCE_TOLERANCE * scale,
+                CHECK(fabs(fd[j]) * size[j] <= DIFFERENCE_TOLERANCE * scale,
                       "d %s / d %s: modelDescription.xml declares no dependency, but central differences give %.10g "
-                      "in %s (the row's scale %.3g)", uname, md_var(knowns[j])->name, fd[j], STATE_NAME[state], scale);
+                      "in %s (%s's size %.3g, the row's largest change %.3g)", uname, md_var(knowns[j])->name, fd[j],
+                      STATE_NAME[state], md_var(knowns[j])->name, size[j], scale);
         }
     }
     /* All unknowns by all knowns at once: J times the seed (§2.1.9). */
