@@ -94,7 +94,8 @@ static fmi2Status serialize_round_trip(Inst *in)
 static fmi2Status directional_derivative(Inst *in)
 {
     const int last = MD_N_DERIVATIVES - 1;
-    const fmi2ValueReference unknown[2] = { md_var(MD_DERIVATIVES[0].index)->vr, md_var(MD_DERIVATIVES[last].index)->vr },
+    const fmi2ValueReference unknown[2] = { md_var(MD_DERIVATIVES[0].index)->vr,
+                                            md_var(MD_DERIVATIVES[last].index)->vr },
                              known[2] = { md_var(md_state_index(0))->vr, md_var(md_state_index(last))->vr };
     const double seed[2] = { 1, -0.5 };
     double out[2] = { NAN, NAN };
@@ -144,7 +145,8 @@ static fmi2Status set_continuous_states(Inst *in)
 {
     double x[MODEL_NX];
     start_states(x);
-    if (in->state == ME_CONTINUOUS) CHECK(f->GetContinuousStates(in->c, x, MODEL_NX) == fmi2OK, "fmi2GetContinuousStates");
+    if (in->state == ME_CONTINUOUS)
+        CHECK(f->GetContinuousStates(in->c, x, MODEL_NX) == fmi2OK, "fmi2GetContinuousStates");
     return f->SetContinuousStates(in->c, x, MODEL_NX);
 }
 static fmi2Status get_array(Inst *in, fmi2GetDerivativesTYPE *get, size_t n)
@@ -159,8 +161,8 @@ static fmi2Status get_event_indicators(Inst *in) { return get_array(in, f->GetEv
 static fmi2Status get_continuous_states(Inst *in) { return get_array(in, f->GetContinuousStates, MODEL_NX); }
 static fmi2Status get_derivatives(Inst *in) { return get_array(in, f->GetDerivatives, MODEL_NX); }
 static fmi2Status get_nominals(Inst *in) { return get_array(in, f->GetNominalsOfContinuousStates, MODEL_NX); }
-/* PainleveRod has no inputs and maxOutputDerivativeOrder = 0: nvr = 0 is
- * the call an importer may make. */
+/* canInterpolateInputs is false and maxOutputDerivativeOrder = 0 in every
+ * model: nvr = 0 is the call an importer may make. */
 static fmi2Status set_input_derivatives(Inst *in) { return f->SetRealInputDerivatives(in->c, NULL, 0, NULL, NULL); }
 static fmi2Status get_output_derivatives(Inst *in) { return f->GetRealOutputDerivatives(in->c, NULL, 0, NULL, NULL); }
 static fmi2Status do_step(Inst *in)
@@ -287,7 +289,7 @@ static const Row ROWS[] = {
     { "fmi2GetDirectionalDerivative", "(der(v), der(w) by y, theta)", directional_derivative, GETTERS, fmi2OK,
       SAME },
     /* §3.2, Model Exchange only: "8" (a pure discrete-time FMU) does not
-     * apply to fmi2SetTime in Event Mode, PainleveRod has continuous states. */
+     * apply to fmi2SetTime in Event Mode, every model has continuous states. */
     { "fmi2EnterEventMode", "", enter_event_mode, M_E | M_C, fmi2OK, TO_EVENT },
     { "fmi2NewDiscreteStates", "", new_discrete_states, M_E, fmi2OK, SAME },
     { "fmi2EnterContinuousTimeMode", "(after the event iteration)", enter_continuous_time_mode, M_E, fmi2OK,
@@ -400,7 +402,7 @@ static bool get_allowed(State s, int index)
 {
     (void)index;
     /* In Initialization Mode condition 2 asks for outputs and InitialUnknowns only;
-     * PainleveRod also answers the parameters and states an importer has just set
+     * the FMUs also answer the parameters and states an importer has just set
      * (tools read them back), which the standard does not forbid an FMU to do. */
     return !instantiated(s);
 }

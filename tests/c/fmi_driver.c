@@ -1,7 +1,8 @@
 /* A model's FMU (PainleveRod, or models/NAME as fmi_driver_NAME) through its
  * C ABI, as an importer loads it (dlopen): every FMI
  * function in every instance state of both interfaces against FMI 2.0.4
- * (conformance_table.c, conformance_directional.c), NULL arguments, bad value references,
+ * (conformance_table.c, conformance_directional.c), its inputs
+ * (input_checks.c), NULL arguments, bad value references,
  * nvr = 0 and huge nvr, bad values, failing allocations, many live instances,
  * and instantiate/simulate/free cycles with a flat resident set.
  *
@@ -12,8 +13,8 @@
  *              [--no-conformance | --conformance-only]
  *
  * Exit status 0 only if every check passed. */
-#include <float.h>
 #include <ctype.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -370,7 +371,7 @@ static void expect_refused(int index, State state, double value)
 
 /* Where a settable variable is first settable (FMI 2.0.4 §3.2.3): parameters
  * and states before initialization (condition 1), inputs from Initialization
- * Mode on (condition 3). 0 if it is not settable. */
+ * Mode on (condition 3); false if it is not settable. */
 static bool first_settable(const MdVariable *v, State *state)
 {
     if (v->type != MD_REAL) return false;
