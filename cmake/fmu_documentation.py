@@ -61,7 +61,8 @@ def page(md):
                   "forces in m g;\nangles in radians.</p>")
     else:
         scales = "<p>SI units.</p>"
-    equations = "; the repository's docs/model.md has the equations." if rod else "."
+    doc = {"PainleveRod": "docs/model.md", "PainleveRodSI": "docs/si_model.md"}.get(md.get("modelName"))
+    equations = f"; the repository's {doc} has the equations." if doc else "."
     return f"""<!DOCTYPE html>
 <html lang="en">
 <head><meta charset="utf-8"><title>{html.escape(title)}</title>

@@ -109,18 +109,10 @@ Model *instance_model(Instance *in)
     return &in->model;
 }
 
-/* What a model starts in, for the event log: config.h's MODEL_START_TEXT for a
- * model without the rod's modes (ShakerTable), else the rod's mode and contact. */
-#ifndef MODEL_START_TEXT
-#define MODEL_START_TEXT(m, text, n)                                                                              \
-    snprintf(text, n, "initial mode contact = %g, mode = %+g", model_get(m, VR_CONTACT), model_get(m, VR_MODE))
-#endif
-
 void instance_start(Instance *in)
 {
-    model_start(&in->model, in->time);
     char text[256];
-    MODEL_START_TEXT(&in->model, text, sizeof text);
+    model_start(&in->model, in->time, text, sizeof text);
     instance_log_event(in, "t = %.17g: %s", in->time, text);
 }
 

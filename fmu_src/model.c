@@ -84,10 +84,11 @@ void model_decide_initial_mode(Model *m)
     model_touch(m);
 }
 
-void model_start(Model *m, double time)
+void model_start(Model *m, double time, char *text, size_t size)
 {
     rod_record_start(&m->run, &m->params, m->x, time);
     model_touch(m);
+    rod_record_describe_start(&m->run, text, size);
 }
 
 void model_begin_integration(Model *m)

@@ -95,8 +95,9 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
 /* The initial mode, decided from the state alone (initialization mode). */
 void model_decide_initial_mode(Model *m);
 
-/* Initialization ends at `time`: the initial mode, the event record reset. */
-void model_start(Model *m, double time);
+/* Initialization ends at `time`: the initial mode, the event record reset;
+ * `text` says what the model starts in (for the event log). */
+void model_start(Model *m, double time, char *text, size_t size);
 
 /* Integration (re)starts from the current state (the event log's reference). */
 void model_begin_integration(Model *m);

@@ -42,6 +42,7 @@
 
 /* rod_record.c: the event iteration of a rod model */
 #define rod_initial_mode NAMESPACED(rod_initial_mode)
+#define rod_record_describe_start NAMESPACED(rod_record_describe_start)
 #define rod_record_event NAMESPACED(rod_record_event)
 #define rod_record_implausible NAMESPACED(rod_record_implausible)
 #define rod_record_new NAMESPACED(rod_record_new)

@@ -27,6 +27,11 @@ void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double
     r->events_at_instant = 0;
 }
 
+void rod_record_describe_start(const RodRecord *r, char *text, size_t size)
+{
+    snprintf(text, size, "initial mode contact = %d, mode = %+d", r->mode.contact, r->mode.slip);
+}
+
 /* Which indicators changed sign since integration last restarted. */
 static void describe_fired(const RodRecord *r, const double z[ROD_NZ], char *text, size_t size)
 {

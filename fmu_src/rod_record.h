@@ -74,6 +74,9 @@ RodMode rod_initial_mode(const RodParams *p, double x[ROD_NX]);
 /* Initialization ends at `time`: the initial mode, an empty record. */
 void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double time);
 
+/* The initial mode, for the event log. */
+void rod_record_describe_start(const RodRecord *r, char *text, size_t size);
+
 /* What an event update did (model.h's ModelEvent, filled by the model). */
 typedef struct {
     bool states_changed, switched;

@@ -34,21 +34,35 @@ def nothing_left_behind():
     assert not left, f"left in {SESSION_TMP}: {left}"
 
 
-@pytest.fixture(scope="session")
-def fmu_path():
-    path = ROOT / "build" / "PainleveRod.fmu"
+def built_fmu(*parts):
+    """The path of an FMU the build made under build/ (a test fails, naming it, if it is missing)."""
+    path = ROOT / "build" / pathlib.Path(*parts)
     if not path.exists():
         pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
     return str(path)
+
+
+@pytest.fixture(scope="session")
+def fmu_path():
+    return built_fmu("PainleveRod.fmu")
 
 
 @pytest.fixture(scope="session")
 def fmu3_path():
     """The same model as an FMI 3.0 FMU."""
-    path = ROOT / "build" / "fmi3" / "PainleveRod.fmu"
-    if not path.exists():
-        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
-    return str(path)
+    return built_fmu("fmi3", "PainleveRod.fmu")
+
+
+@pytest.fixture(scope="session")
+def si_fmu_path():
+    """The rod in SI units with inputs (models/PainleveRodSI)."""
+    return built_fmu("PainleveRodSI.fmu")
+
+
+@pytest.fixture(scope="session")
+def table_path():
+    """The shaker table (models/ShakerTable)."""
+    return built_fmu("ShakerTable.fmu")
 
 
 @pytest.fixture(scope="session")

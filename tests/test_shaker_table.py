@@ -30,14 +30,6 @@ INTERFACES = ["ModelExchange", "CoSimulation"]
 _P = POINTER(c_double)
 
 
-@pytest.fixture(scope="session")
-def table_path():
-    path = ROOT / "build" / "ShakerTable.fmu"
-    if not path.exists():
-        pytest.fail(f"{path} is missing: `bash run.sh test` builds it before running the tests")
-    return str(path)
-
-
 @pytest.fixture(scope="module")
 def table(table_path):
     """The FMU extracted once by the harness; raw fmpy instances from .instantiate."""

@@ -175,12 +175,13 @@ void model_decide_initial_mode(Model *m)
     model_touch(m);
 }
 
-void model_start(Model *m, double time)
+void model_start(Model *m, double time, char *text, size_t size)
 {
     model_update(m);
     rod_record_start(&m->run, &m->rod, m->xs, time);
     m->v_floor_decided = m->v_floor;
     model_touch(m);
+    rod_record_describe_start(&m->run, text, size);
 }
 
 void model_begin_integration(Model *m)

@@ -45,11 +45,6 @@ enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_NOUT }; /*
 /* The table has no internals an FMU state must carry beyond its variables. */
 #define MODEL_INTERNALS(INTERNAL)
 
-/* What the table starts in, for the event log (instance_start): it has no modes. */
-#define MODEL_START_TEXT(m, text, n)                                                                       \
-    snprintf(text, n, "table starts at position = %g m, velocity = %g m/s (no modes)", (m)->x[TABLE_Z], \
-             (m)->x[TABLE_V])
-
 typedef struct {
     double M, K, C;            /* mass [kg], stiffness [N/m], damping [N s/m] */
     double F0, frequency;      /* drive amplitude [N] and frequency [Hz] */

@@ -105,9 +105,11 @@ void model_decide_initial_mode(Model *m)
     (void)m;   /* no modes */
 }
 
-void model_start(Model *m, double time)
+void model_start(Model *m, double time, char *text, size_t size)
 {
-    (void)m, (void)time;   /* no modes, no event record */
+    (void)time;   /* no modes, no event record */
+    snprintf(text, size, "table starts at position = %g m, velocity = %g m/s (no modes)", m->x[TABLE_Z],
+             m->x[TABLE_V]);
 }
 
 void model_begin_integration(Model *m)
