@@ -245,13 +245,16 @@ Status instance_derivatives(Instance *in, const char *call, const unsigned int u
     /* Unknowns (FMI 2.0.4 §2.1.9): the Real outputs and derivatives, in
      * Continuous-Time Mode the continuous ones (the discrete are frozen there);
      * while initializing, the Real InitialUnknowns (what the model calculates,
-     * discrete outputs included; states and parameters are set, not unknown). */
+     * discrete outputs and calculated parameters included; states and
+     * parameters are set, not unknown). A calculated parameter is fixed once
+     * initialization ends: no unknown after it. */
     for (size_t i = 0; i < n_unknowns; ++i) {
         const VariableInfo *u = model_variable(unknowns[i]);
         if (!u || u->type != TYPE_REAL)
             return instance_fail(in, call, "unknown value reference %u is not a Real variable: directional derivatives "
                                  "are defined for Reals only", unknowns[i]);
-        const bool unknown = u->kind == KIND_CALCULATED || (u->kind == KIND_STATE && !initializing) ||
+        const bool unknown = u->kind == KIND_CALCULATED || (u->kind == KIND_CALCULATED_PARAMETER && initializing) ||
+                             (u->kind == KIND_STATE && !initializing) ||
                              (u->kind == KIND_DISCRETE && in->state != ContinuousTimeMode);
         if (!unknown)
             return instance_fail(in, call, "%s is not an unknown in %s", u->name, instance_state_name(in->state));

@@ -15,8 +15,12 @@
 typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
 /* PARAMETER: fixed, set before initialization ends; STATE: a continuous state;
  * INPUT: continuous, set by the master at any time (causality input);
- * CALCULATED: continuous, derived; DISCRETE: changes only at events. */
-typedef enum { KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT } VariableKind;
+ * CALCULATED: continuous, derived; DISCRETE: changes only at events;
+ * CALCULATED_PARAMETER: derived from parameters while initializing, fixed
+ * after (causality calculatedParameter: an unknown of Initialization Mode only). */
+typedef enum {
+    KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT, KIND_CALCULATED_PARAMETER
+} VariableKind;
 
 /* Value references, in the order of config.h's list and modelDescription.xml. */
 #define MODEL_VR_ENUM(id, ...) VR_##id,

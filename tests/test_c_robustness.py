@@ -12,15 +12,23 @@ FMI 3.0, derivatives, robustness) and fuzz target (fuzz_fmi3.c), over the same
 instrumented libraries, which export both layers; both fuzz targets replay the
 whole corpus.
 
+Every model gets the FMI 2.0 driver, conformance table and fuzz target:
+PainleveRod (fmu_src) and each models/NAME that tests/c/CMakeLists.txt names by
+add_model_dir_checks (programs suffixed _NAME, its FMU built from its own
+modelDescription.xml's sources, its tables from that XML); a models/NAME that
+it does not name fails test_every_model_has_its_conformance_checks.
+
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
 sources (to check that a planted bug is caught); FUZZ_SECONDS sets the fuzzing
-time (default 45), FUZZ3_SECONDS the FMI 3.0 target's (default 20)."""
+time (default 45), FUZZ3_SECONDS the FMI 3.0 target's (default 20),
+FUZZ_MODEL_SECONDS each further model's (default 15)."""
 import os
 import pathlib
 import re
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import pytest
 
@@ -29,6 +37,16 @@ C_TESTS = ROOT / "tests" / "c"
 CORPUS = C_TESTS / "corpus"
 FUZZ_SECONDS = int(os.environ.get("FUZZ_SECONDS", "45"))
 FUZZ3_SECONDS = int(os.environ.get("FUZZ3_SECONDS", "20"))
+FUZZ_MODEL_SECONDS = int(os.environ.get("FUZZ_MODEL_SECONDS", "15"))
+
+# Each model's suffix of its programs (fmi_driver_asan{suffix}, fmi_driver{suffix}, fuzz_fmi{suffix}).
+MODEL_DIRS = re.findall(r"^add_model_dir_checks\((\w+)\)", (C_TESTS / "CMakeLists.txt").read_text(), re.M)
+MODELS = {"PainleveRod": "", **{name: f"_{name}" for name in MODEL_DIRS}}
+
+
+def model_description(model):
+    path = ROOT / "modelDescription.xml" if model == "PainleveRod" else ROOT / "models" / model / "modelDescription.xml"
+    return ET.parse(path).getroot()
 
 SANITIZER_ENV = {
     "ASAN_OPTIONS": "detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1:strict_string_checks=1:"
@@ -69,28 +87,47 @@ def assert_clean(code, output, what):
     assert code == 0 and not reports, f"{what} exited {code}:\n" + "\n".join(reports[:40]) + "\n" + output[-6000:]
 
 
-def test_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build):
-    code, output = run([build / "fmi_driver_asan", "--no-conformance", "--cycles", "3000"], timeout=300)
-    assert_clean(code, output, "fmi_driver_asan")
+def test_every_model_has_its_conformance_checks():
+    models = sorted(p.parent.name for p in (ROOT / "models").glob("*/modelDescription.xml"))
+    assert models == sorted(MODEL_DIRS), "tests/c/CMakeLists.txt: add_model_dir_checks(NAME) and tests/c/profiles/NAME.h"
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build, model):
+    code, output = run([build / f"fmi_driver_asan{MODELS[model]}", "--no-conformance", "--cycles", "3000"],
+                       timeout=300)
+    assert_clean(code, output, f"fmi_driver_asan{MODELS[model]}")
     assert " 0 failed" in output
 
 
-def test_every_fmi2_call_in_every_state_answers_as_fmi_2_0_4_requires(build):
+@pytest.mark.parametrize("model", MODELS)
+def test_every_fmi2_call_in_every_state_answers_as_fmi_2_0_4_requires(build, model):
     # The tables of FMI 2.0.4 sections 3.2.3 and 4.2.4, the status queries of 4.2.3,
     # the Error state of 2.1.3 and the directional derivatives of 2.1.9 that
-    # modelDescription.xml's ModelStructure defines, under AddressSanitizer + UBSan.
-    code, output = run([build / "fmi_driver_asan", "--conformance-only"], timeout=300)
-    assert_clean(code, output, "fmi_driver_asan --conformance-only")
-    assert " 0 failed" in output
+    # modelDescription.xml's ModelStructure defines, under AddressSanitizer + UBSan;
+    # each input of the XML in FMU states and across a Co-Simulation step.
+    code, output = run([build / f"fmi_driver_asan{MODELS[model]}", "--conformance-only"], timeout=300)
+    assert_clean(code, output, f"fmi_driver_asan{MODELS[model]} --conformance-only")
+    assert re.search(r"fmi_driver: \d+ checks, 0 failed", output), output[-3000:]
+    variables = model_description(model).find("ModelVariables")
+    names = {v.get("name") for v in variables}
+    inputs = [v for v in variables if v.get("causality") == "input"]
+    assert f"inputs: {len(inputs)} checked" in output
+    if {"F_x", "F_y", "tau", "vx_cm", "vy_cm", "phi"} <= names:
+        assert "free flight after a jump of F_x, F_y, tau follows Newton's laws" in output
 
 
 VALGRIND = ["valgrind", "--error-exitcode=99", "--leak-check=full", "--track-origins=yes",
             "--show-leak-kinds=definite,indirect,possible", "--errors-for-leak-kinds=definite,indirect,possible"]
 
 
-def test_driver_finds_nothing_under_valgrind_memcheck(build):
-    code, output = run([*VALGRIND, build / "fmi_driver", "--no-conformance", "--cycles", "300"], timeout=300)
-    assert_clean(code, output, "valgrind fmi_driver")
+@pytest.mark.parametrize("model", MODELS)
+def test_driver_finds_nothing_under_valgrind_memcheck(build, model):
+    # The cycles' memory is the soak's below: further models run fewer here (CI time).
+    cycles = "300" if model == "PainleveRod" else "100"
+    code, output = run([*VALGRIND, build / f"fmi_driver{MODELS[model]}", "--no-conformance", "--cycles", cycles],
+                       timeout=300)
+    assert_clean(code, output, f"valgrind fmi_driver{MODELS[model]}")
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
 
 
@@ -106,24 +143,33 @@ def test_a_failed_cvode_set_up_frees_what_it_made_and_the_instance_recovers(buil
     assert re.search(r"CVODE failing at each of its \d+ SUNDIALS calls: \d+ checks, 0 failed", output), output[-3000:]
 
 
-def test_conformance_calls_find_nothing_under_valgrind_memcheck(build):
+@pytest.mark.parametrize("model", MODELS)
+def test_conformance_calls_find_nothing_under_valgrind_memcheck(build, model):
     # Memory only: whether each call answers as the standard requires is the test above
     # (a failed check exits 1, valgrind's finding 99).
-    code, output = run([*VALGRIND, build / "fmi_driver", "--conformance-only"], timeout=300)
+    code, output = run([*VALGRIND, build / f"fmi_driver{MODELS[model]}", "--conformance-only"], timeout=300)
     reports = [line for line in output.splitlines() if any(m in line for m in REPORT_MARKERS[:-1])]
     assert code in (0, 1) and not reports, f"valgrind fmi_driver --conformance-only exited {code}:\n{output[-6000:]}"
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
 
 
-def test_100000_instantiate_simulate_free_cycles_keep_memory_flat(build):
-    # Each cycle allocates two blocks; a leak of even one would grow the resident set by 3 MB.
-    code, output = run([build / "fmi_driver", "--no-api", "--cycles", "100000", "--max-rss-growth-kb", "512"],
-                       timeout=300)
-    assert_clean(code, output, "fmi_driver --cycles 100000")
-    assert "100000 instantiate/simulate/free cycles" in output
+# PainleveRod 100000 cycles, each further model 20000 (its runs cross more events).
+SOAK_CYCLES = {model: 100000 if model == "PainleveRod" else 20000 for model in MODELS}
 
 
-FUZZ_TARGETS = {"fuzz_fmi": FUZZ_SECONDS, "fuzz_fmi3": FUZZ3_SECONDS}
+@pytest.mark.parametrize("model", MODELS)
+def test_instantiate_simulate_free_cycles_keep_memory_flat(build, model):
+    # Each cycle allocates two blocks; a leak of even one would grow the resident set by 3 MB
+    # over 100000 cycles (0.6 MB over 20000).
+    cycles = SOAK_CYCLES[model]
+    code, output = run([build / f"fmi_driver{MODELS[model]}", "--no-api", "--cycles", str(cycles),
+                        "--max-rss-growth-kb", "512" if cycles == 100000 else "256"], timeout=300)
+    assert_clean(code, output, f"fmi_driver{MODELS[model]} --cycles {cycles}")
+    assert f"{cycles} instantiate/simulate/free cycles" in output
+
+
+FUZZ_TARGETS = {"fuzz_fmi": FUZZ_SECONDS, "fuzz_fmi3": FUZZ3_SECONDS,
+                **{f"fuzz_fmi{MODELS[name]}": FUZZ_MODEL_SECONDS for name in MODEL_DIRS}}
 
 
 @pytest.mark.parametrize("target", sorted(FUZZ_TARGETS))

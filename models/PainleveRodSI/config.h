@@ -20,7 +20,7 @@
 #define SI_BOUND 1e9
 
 /* VARIABLE(ID, name, type, kind, field, min, max), as in fmu_src/config.h, with
- * the INPUT kind. Reals first, then Integers, Booleans. */
+ * the INPUT and CALCULATED_PARAMETER kinds. Reals first, then Integers, Booleans. */
 #define MODEL_VARIABLES(VARIABLE)                                                                  \
     VARIABLE(M, "m", REAL, PARAMETER, m, 1e-9, 1e9)                                                \
     VARIABLE(L, "l", REAL, PARAMETER, l, 1e-6, 1e6)                                                \
@@ -29,9 +29,9 @@
     VARIABLE(K, "k", REAL, PARAMETER, k, 1e-6, 1e15)                                               \
     VARIABLE(C, "c", REAL, PARAMETER, c, 0, 1e12)                                                  \
     VARIABLE(MU, "mu", REAL, PARAMETER, mu, 0, 1e6)                                                \
-    VARIABLE(ALPHA, "alpha", REAL, CALCULATED, rod.alpha, 0, 0)                                    \
-    VARIABLE(EPSILON, "epsilon", REAL, CALCULATED, rod.epsilon, 0, 0)                              \
-    VARIABLE(DELTA, "delta", REAL, CALCULATED, rod.delta, 0, 0)                                    \
+    VARIABLE(ALPHA, "alpha", REAL, CALCULATED_PARAMETER, rod.alpha, 0, 0)                          \
+    VARIABLE(EPSILON, "epsilon", REAL, CALCULATED_PARAMETER, rod.epsilon, 0, 0)                    \
+    VARIABLE(DELTA, "delta", REAL, CALCULATED_PARAMETER, rod.delta, 0, 0)                          \
     VARIABLE(Y_FLOOR, "y_floor", REAL, INPUT, y_floor, -SI_BOUND, SI_BOUND)                        \
     VARIABLE(W_FLOOR, "w_floor", REAL, INPUT, w_floor, -SI_BOUND, SI_BOUND)                        \
     VARIABLE(V_FLOOR, "v_floor", REAL, INPUT, v_floor, -SI_BOUND, SI_BOUND)                        \

@@ -88,11 +88,15 @@ static fmi2Status serialize_round_trip(Inst *in)
     free(bytes);
     return worst(st, f->FreeFMUstate(in->c, &s));
 }
-/* Derivatives by states: unknowns and knowns in every state that allows the
- * call (y and theta have initial = "exact", knowns of Initialization Mode too). */
+/* Derivatives by states: the first and last <Derivatives> by their states, in
+ * every state that allows the call (states have initial = "exact": knowns of
+ * Initialization Mode too). */
 static fmi2Status directional_derivative(Inst *in)
 {
-    const fmi2ValueReference unknown[2] = { VR_DER_V, VR_DER_W }, known[2] = { VR_Y, VR_THETA };
+    const int last = MD_N_DERIVATIVES - 1;
+    const fmi2ValueReference unknown[2] = { md_var(MD_DERIVATIVES[0].index)->vr,
+                                            md_var(MD_DERIVATIVES[last].index)->vr },
+                             known[2] = { md_var(md_state_index(0))->vr, md_var(md_state_index(last))->vr };
     const double seed[2] = { 1, -0.5 };
     double out[2] = { NAN, NAN };
     const fmi2Status st = f->GetDirectionalDerivative(in->c, unknown, 2, known, 2, seed, out);
@@ -131,35 +135,34 @@ static fmi2Status set_time(Inst *in)
     if (st == fmi2OK) in->t += 1e-9;
     return st;
 }
-/* The states the instance has (or its start values where they cannot be read). */
-static void current_states(Inst *in, double x[ROD_NX])
+/* The states' start values (modelDescription.xml). */
+static void start_states(double x[MODEL_NX])
 {
-    static const double START[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
-    memcpy(x, START, sizeof START);
-    double y[ROD_NX];
-    if (f->GetContinuousStates(in->c, y, ROD_NX) == fmi2OK) memcpy(x, y, sizeof y);
+    for (int i = 0; i < MODEL_NX; ++i) x[i] = md_var(md_state_index(i))->start;
 }
+/* The current states where they can be set (Continuous-Time Mode), else the start values. */
 static fmi2Status set_continuous_states(Inst *in)
 {
-    double x[ROD_NX];
-    if (in->state == ME_CONTINUOUS) current_states(in, x);
-    else memcpy(x, (double[ROD_NX]){ 0, 1, 0, 0, 1, 0.5 }, sizeof x);
-    return f->SetContinuousStates(in->c, x, ROD_NX);
+    double x[MODEL_NX];
+    start_states(x);
+    if (in->state == ME_CONTINUOUS)
+        CHECK(f->GetContinuousStates(in->c, x, MODEL_NX) == fmi2OK, "fmi2GetContinuousStates");
+    return f->SetContinuousStates(in->c, x, MODEL_NX);
 }
 static fmi2Status get_array(Inst *in, fmi2GetDerivativesTYPE *get, size_t n)
 {
-    double v[ROD_NX + ROD_NZ];
+    double v[MODEL_NX + HARNESS_NZ];
     for (size_t i = 0; i < n; ++i) v[i] = NAN;
     const fmi2Status st = get(in->c, v, n);
     for (size_t i = 0; st == fmi2OK && i < n; ++i) CHECK(isfinite(v[i]), "element %zu = %g", i, v[i]);
     return st;
 }
-static fmi2Status get_event_indicators(Inst *in) { return get_array(in, f->GetEventIndicators, ROD_NZ); }
-static fmi2Status get_continuous_states(Inst *in) { return get_array(in, f->GetContinuousStates, ROD_NX); }
-static fmi2Status get_derivatives(Inst *in) { return get_array(in, f->GetDerivatives, ROD_NX); }
-static fmi2Status get_nominals(Inst *in) { return get_array(in, f->GetNominalsOfContinuousStates, ROD_NX); }
-/* PainleveRod has no inputs and maxOutputDerivativeOrder = 0: nvr = 0 is
- * the call an importer may make. */
+static fmi2Status get_event_indicators(Inst *in) { return get_array(in, f->GetEventIndicators, MODEL_NZ); }
+static fmi2Status get_continuous_states(Inst *in) { return get_array(in, f->GetContinuousStates, MODEL_NX); }
+static fmi2Status get_derivatives(Inst *in) { return get_array(in, f->GetDerivatives, MODEL_NX); }
+static fmi2Status get_nominals(Inst *in) { return get_array(in, f->GetNominalsOfContinuousStates, MODEL_NX); }
+/* canInterpolateInputs is false and maxOutputDerivativeOrder = 0 in every
+ * model: nvr = 0 is the call an importer may make. */
 static fmi2Status set_input_derivatives(Inst *in) { return f->SetRealInputDerivatives(in->c, NULL, 0, NULL, NULL); }
 static fmi2Status get_output_derivatives(Inst *in) { return f->GetRealOutputDerivatives(in->c, NULL, 0, NULL, NULL); }
 static fmi2Status do_step(Inst *in)
@@ -286,7 +289,7 @@ static const Row ROWS[] = {
     { "fmi2GetDirectionalDerivative", "(der(v), der(w) by y, theta)", directional_derivative, GETTERS, fmi2OK,
       SAME },
     /* §3.2, Model Exchange only: "8" (a pure discrete-time FMU) does not
-     * apply to fmi2SetTime in Event Mode, PainleveRod has continuous states. */
+     * apply to fmi2SetTime in Event Mode, every model has continuous states. */
     { "fmi2EnterEventMode", "", enter_event_mode, M_E | M_C, fmi2OK, TO_EVENT },
     { "fmi2NewDiscreteStates", "", new_discrete_states, M_E, fmi2OK, SAME },
     { "fmi2EnterContinuousTimeMode", "(after the event iteration)", enter_continuous_time_mode, M_E, fmi2OK,
@@ -399,7 +402,7 @@ static bool get_allowed(State s, int index)
 {
     (void)index;
     /* In Initialization Mode condition 2 asks for outputs and InitialUnknowns only;
-     * PainleveRod also answers the parameters and states an importer has just set
+     * the FMUs also answer the parameters and states an importer has just set
      * (tools read them back), which the standard does not forbid an FMU to do. */
     return !instantiated(s);
 }
@@ -412,8 +415,13 @@ static bool set_allowed(State s, int index)
     const bool input = v->causality == MD_INPUT;
     const bool tunable_parameter = v->causality == MD_PARAMETER && v->variability == MD_TUNABLE;
     switch (s) {
-    case ME_INSTANTIATED: case CS_INSTANTIATED: /* 1 */
-        return not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX);
+    case ME_INSTANTIATED: case CS_INSTANTIATED: /* 1, and a deliberate leniency for inputs */
+        /* Condition 1 leaves inputs out (they have no initial; FMI 2.0.1 made it
+         * explicit, fmi-standard #440), but fmpy sets them there (its
+         * settable_in_instantiated, for start_values), as fmusim did
+         * (Reference-FMUs #511), and FMI 3.0 allows it: the FMUs accept an input
+         * before initialization and use it (input_checks.c). */
+        return (not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX)) || input;
     case ME_INIT: case CS_INIT: /* 3 */
         return (not_constant && v->initial == MD_INITIAL_EXACT) || input;
     case ME_EVENT: case ME_EVENT_AGAIN: case CS_STEP_COMPLETE: /* 4, 6 */
@@ -534,9 +542,7 @@ void test_error_state_recovery(void)
         fmi2FMUstate saved = NULL;
         const double t_saved = in.t;
         if (CHECK(f->GetFMUstate(in.c, &saved) == fmi2OK, "%s: fmi2GetFMUstate: %s", what, harness.last_message)) {
-            const fmi2ValueReference vr = VR_EPSILON;
-            const double eps = 0.5;
-            CHECK(f->SetReal(in.c, &vr, 1, &eps) == fmi2Error, "%s: epsilon set after initialization", what);
+            CHECK(set_fixed_parameter(&in) == fmi2Error, "%s: a fixed parameter set after initialization", what);
             CHECK(f->SetFMUstate(in.c, saved) == fmi2OK, "%s: %s", what, harness.last_message);
             in.t = t_saved;
             inst_works(&in, what); /* still in FROM[k] */

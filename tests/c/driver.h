@@ -15,9 +15,6 @@ extern FmiApi api; /* loaded by main */
 
 bool check_(bool ok, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
-/* The Real variables come first (config.h): value references 0 .. N_REALS - 1. */
-#define N_REALS VR_MODE
-
 #define CHECK(cond, ...) check_((cond), __FILE__, __LINE__, __VA_ARGS__)
 
 extern long checks, failures;
@@ -31,7 +28,7 @@ bool names_call(const char *message, const char *call);
 /* ----------------------------------------------------- instance states */
 
 /* The states of the Model Exchange state machine (FMI 2.0.4 §3.2.3) and of
- * the Co-Simulation one (§4.2.4) that an instance of PainleveRod can be in:
+ * the Co-Simulation one (§4.2.4) that an instance of the model can be in:
  * stepInProgress, stepFailed and stepCanceled need asynchronous or failing
  * steps, which it does not have. Event Mode is reached two ways: right after
  * initialization, and from Continuous-Time Mode after an integration step. */
@@ -62,6 +59,10 @@ typedef struct {
  * importer makes; false (with a failed check) if that did not work. */
 bool inst_reach(Inst *in, State state, bool logging);
 
+/* The first fixed Real parameter of modelDescription.xml set to its start
+ * value: an error once initialization has ended (FMI 2.0.4 §3.2.3). */
+fmi2Status set_fixed_parameter(Inst *in);
+
 /* fmi2FreeInstance, and a check that every block it allocated is freed. */
 void inst_free(Inst *in);
 
@@ -82,5 +83,6 @@ void test_conformance_variables(void);       /* conformance_table.c */
 void test_conformance_null_instance(void);   /* conformance_table.c */
 void test_error_state_recovery(void);        /* conformance_table.c */
 void test_directional_derivatives(void);     /* conformance_directional.c */
+void test_inputs(void);                      /* input_checks.c */
 
 #endif

@@ -103,49 +103,50 @@ fmi2Status harness_event_iteration(const FmiApi *f, fmi2Component c, bool *state
     return f->EnterContinuousTimeMode(c);
 }
 
-static bool any_sign_change(const double a[ROD_NZ], const double b[ROD_NZ])
+static bool any_sign_change(const double a[HARNESS_NZ], const double b[HARNESS_NZ])
 {
-    for (int i = 0; i < ROD_NZ; ++i)
+    for (int i = 0; i < MODEL_NZ; ++i)
         if ((a[i] > 0) != (b[i] > 0)) return true;
     return false;
 }
 
 fmi2Status euler_start(const FmiApi *f, EulerSim *s, double epsilon)
 {
-    const fmi2ValueReference vr_epsilon = VR_EPSILON;
+    const fmi2ValueReference knob = PROFILE_KNOB;
+    const double value = PROFILE_KNOB_VALUE(epsilon);
     fmi2Component c = s->c;
     bool changed;
     s->t = 0;
     s->events = 0;
     TRY(f->SetupExperiment(c, fmi2False, 0, s->t, fmi2False, 0));
-    TRY(f->SetReal(c, &vr_epsilon, 1, &epsilon));
+    TRY(f->SetReal(c, &knob, 1, &value));
     TRY(f->EnterInitializationMode(c));
     TRY(f->ExitInitializationMode(c));
     TRY(harness_event_iteration(f, c, &changed));
-    TRY(f->GetContinuousStates(c, s->x, ROD_NX));
-    return f->GetEventIndicators(c, s->z, ROD_NZ);
+    TRY(f->GetContinuousStates(c, s->x, MODEL_NX));
+    return f->GetEventIndicators(c, s->z, MODEL_NZ);
 }
 
 fmi2Status euler_step(const FmiApi *f, EulerSim *s, double h)
 {
     fmi2Component c = s->c;
-    double dx[ROD_NX], z[ROD_NZ];
+    double dx[MODEL_NX], z[HARNESS_NZ];
     bool changed;
-    TRY(f->GetDerivatives(c, dx, ROD_NX));
+    TRY(f->GetDerivatives(c, dx, MODEL_NX));
     s->t += h;
-    for (int i = 0; i < ROD_NX; ++i) s->x[i] += h * dx[i];
+    for (int i = 0; i < MODEL_NX; ++i) s->x[i] += h * dx[i];
     TRY(f->SetTime(c, s->t));
-    TRY(f->SetContinuousStates(c, s->x, ROD_NX));
+    TRY(f->SetContinuousStates(c, s->x, MODEL_NX));
     fmi2Boolean enter_event = fmi2False, terminate = fmi2False;
     TRY(f->CompletedIntegratorStep(c, fmi2True, &enter_event, &terminate));
     if (terminate) return fmi2Discard;
-    TRY(f->GetEventIndicators(c, z, ROD_NZ));
+    TRY(f->GetEventIndicators(c, z, MODEL_NZ));
     if (enter_event || any_sign_change(s->z, z)) {
         TRY(f->EnterEventMode(c));
         TRY(harness_event_iteration(f, c, &changed));
         ++s->events;
-        if (changed) TRY(f->GetContinuousStates(c, s->x, ROD_NX));
-        TRY(f->GetEventIndicators(c, z, ROD_NZ));
+        if (changed) TRY(f->GetContinuousStates(c, s->x, MODEL_NX));
+        TRY(f->GetEventIndicators(c, z, MODEL_NZ));
     }
     memcpy(s->z, z, sizeof z);
     return fmi2OK;

@@ -9,7 +9,13 @@
 
 #include "fmi2FunctionTypes.h"
 #include "fmi2_functions.h"
-#include "model.h" /* the FMU's metadata: value references, ROD_NX, ROD_NZ */
+#include "model.h" /* the FMU's metadata: value references, MODEL_NX, MODEL_NZ */
+/* What the driver needs to know of this model beyond its modelDescription.xml
+ * (tests/c/profiles/NAME.h, chosen by CMake's add_model_checks). */
+#include DRIVER_PROFILE
+
+/* Arrays of event indicators, which a model may not have. */
+#define HARNESS_NZ (MODEL_NZ > 0 ? MODEL_NZ : 1)
 
 /* The FMU's functions: the shared loader of importer/ (all of them required). */
 typedef Fmi2Functions FmiApi;
@@ -45,11 +51,11 @@ fmi2Component harness_instantiate(const FmiApi *f, const char *name);
  * time, so that several instances can be stepped in turn. */
 typedef struct {
     fmi2Component c;
-    double t, x[ROD_NX], z[ROD_NZ];
+    double t, x[MODEL_NX], z[HARNESS_NZ];
     int events; /* event iterations after initialization */
 } EulerSim;
 
-/* Set-up with the given epsilon, initialization, the initial event
+/* Set-up with the contact's compliance epsilon (the profile's knob), initialization, the initial event
  * iteration, continuous-time mode. */
 fmi2Status euler_start(const FmiApi *f, EulerSim *s, double epsilon);
 

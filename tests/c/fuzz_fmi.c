@@ -1,5 +1,6 @@
 /* libFuzzer target: the input's bytes become a sequence of FMI calls on up to
- * three instances of PainleveRod, with the values, value references, counts
+ * three instances of a model (one target per model: fuzz_fmi for PainleveRod,
+ * fuzz_fmi_NAME for models/NAME), with the values, value references, counts
  * and NULL pointers they carry (NaN, infinities, denormals, range limits,
  * epsilon huge and tiny, raw bit patterns). Besides AddressSanitizer and
  * UBSan it checks, and aborts on:
@@ -180,6 +181,17 @@ static void take_value_args(ValueArgs *a, bool values)
     }
 }
 
+/* Whether an Integer value lies within its variable's min and max (modelDescription.xml). */
+static bool within_bounds(fmi2ValueReference vr, fmi2Integer value)
+{
+    for (int k = 1; k <= MD_N_VARIABLES; ++k) {
+        const MdVariable *v = md_var(k);
+        if (v->vr != vr || v->type != MD_INTEGER) continue;
+        return (!v->has_min || value >= v->min) && (!v->has_max || value <= v->max);
+    }
+    return false;
+}
+
 static void op_get(Slot *s, uint8_t which)
 {
     const long errors_before = harness.error_messages;
@@ -196,9 +208,8 @@ static void op_get(Slot *s, uint8_t which)
         break;
     case 1:
         if (CALL(s, true, f->GetInteger(c, v, n, null_arrays ? NULL : a.iv)) == fmi2OK && !null_arrays)
-            for (size_t k = 0; k < n; ++k)   /* mode in {-1, 0, 1}; the counters switches, sticks >= 0 */
-                INVARIANT(a.vr[k] == VR_MODE ? a.iv[k] >= -1 && a.iv[k] <= 1 : a.iv[k] >= 0, "Integer %u = %d",
-                          a.vr[k], a.iv[k]);
+            for (size_t k = 0; k < n; ++k)   /* within the min and max of modelDescription.xml */
+                INVARIANT(within_bounds(a.vr[k], a.iv[k]), "Integer %u = %d", a.vr[k], a.iv[k]);
         break;
     case 2:
         if (CALL(s, true, f->GetBoolean(c, v, n, null_arrays ? NULL : a.bv)) == fmi2OK && !null_arrays)
@@ -234,7 +245,7 @@ static void op_arrays(Slot *s, uint8_t which)
     double v[CAP];
     bool null_arrays;
     const uint8_t size_sel = take(&in);
-    size_t n = size_sel < 200 ? (which % 5 == 1 ? ROD_NZ : ROD_NX) : take_count(&in, &null_arrays);
+    size_t n = size_sel < 200 ? (which % 5 == 1 ? MODEL_NZ : MODEL_NX) : take_count(&in, &null_arrays);
     null_arrays = n > CAP || size_sel == 255;
     for (size_t k = 0; k < CAP; ++k) v[k] = take_double(&in);
     double *a = null_arrays ? NULL : v;
@@ -417,13 +428,16 @@ static void op_deserialize_raw(Slot *s)
 }
 
 /* One communication step from t, mostly the instance's time. CVODE's cost
- * grows with the span (up to ~0.5 s for 1000), so each input gets a budget of
- * integrated time, and one step of any size (huge, infinite, NaN) besides. */
+ * grows with the span (PainleveRod: up to ~0.5 s for 1000), so each input gets
+ * a budget of integrated time (the profile's), and one step of any size
+ * (huge, infinite, NaN) besides, finite ones up to the profile's longest (the
+ * rod in SI units, with a soft contact and heavy damping, can chatter between
+ * stick and slip at a million events a second). */
 static fmi2Status do_step(Slot *s, double t, double h, fmi2Boolean no_set_prior)
 {
     const long errors_before = harness.error_messages;
     if (fabs(h) <= span_left) span_left -= fabs(h);
-    else if (span_left >= 0) span_left = -1;
+    else if (span_left >= 0 && !(isfinite(h) && fabs(h) > PROFILE_FUZZ_LONGEST_STEP)) span_left = -1;
     else h = 1e-3;
     const fmi2Status st = CALL(s, false, f->DoStep(s->sim.c, t, h, no_set_prior));
     if (st == fmi2OK) s->time = t + h;
@@ -506,13 +520,14 @@ static void op_optional(Slot *s, uint8_t which)
     }
 }
 
-/* Whole stretches of a simulation: start with a fuzzed epsilon, Euler steps. */
+/* Whole stretches of a simulation: start with a fuzzed knob (Co-Simulation:
+ * its value; Model Exchange: the profile's value for a fuzzed epsilon), Euler steps. */
 static void op_simulate(Slot *s, uint8_t which)
 {
     const long errors_before = harness.error_messages;
     fmi2Component c = s->sim.c;
     if (which % 2 == 0 && s->cs) {
-        const fmi2ValueReference vr = VR_EPSILON;
+        const fmi2ValueReference vr = PROFILE_KNOB;
         const double eps = take_double(&in);
         fmi2Status st = CALL(s, false, f->SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0));
         s->time = 0;
@@ -550,7 +565,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     harness_reset();
     in = (Bytes){ data, size };
-    span_left = 2;
+    span_left = PROFILE_FUZZ_SPAN;
     for (int calls = 0; in.n > 0 && calls < 256; ++calls) {
         const uint8_t op = take(&in);
         Slot *s = &slots[op / N_OPS % 3];

@@ -19,8 +19,9 @@ bool state_is_cs(State s)
     return s >= CS_INSTANTIATED;
 }
 
-/* Co-Simulation runs with a compliant contact of epsilon 0.05: CVODE's steps
- * through the contact stay few, so that the many instances remain cheap. */
+/* Co-Simulation runs with a compliant contact of epsilon 0.05 (the profile's
+ * knob): CVODE's steps through the contact stay few, so that the many
+ * instances remain cheap. */
 #define CS_EPSILON 0.05
 #define CS_STEP 0.02
 
@@ -37,10 +38,10 @@ bool state_is_cs(State s)
 
 static fmi2Status cs_initialize(Inst *in)
 {
-    const fmi2ValueReference vr = VR_EPSILON;
-    const double eps = CS_EPSILON;
+    const fmi2ValueReference vr = PROFILE_KNOB;
+    const double value = PROFILE_KNOB_VALUE(CS_EPSILON);
     fmi2Status st = f->SetupExperiment(in->c, fmi2False, 0, 0, fmi2False, 0);
-    TRY(f->SetReal(in->c, &vr, 1, &eps));
+    TRY(f->SetReal(in->c, &vr, 1, &value));
     TRY(f->EnterInitializationMode(in->c));
     in->t = 0;
     return st;
@@ -48,16 +49,24 @@ static fmi2Status cs_initialize(Inst *in)
 
 static fmi2Status euler_step_from(Inst *in, double h)
 {
-    double x[ROD_NX], dx[ROD_NX];
+    double x[MODEL_NX], dx[MODEL_NX];
     fmi2Boolean enter_event = fmi2False, terminate = fmi2False;
-    fmi2Status st = f->GetContinuousStates(in->c, x, ROD_NX);
-    TRY(f->GetDerivatives(in->c, dx, ROD_NX));
-    for (int i = 0; i < ROD_NX; ++i) x[i] += h * dx[i];
+    fmi2Status st = f->GetContinuousStates(in->c, x, MODEL_NX);
+    TRY(f->GetDerivatives(in->c, dx, MODEL_NX));
+    for (int i = 0; i < MODEL_NX; ++i) x[i] += h * dx[i];
     TRY(f->SetTime(in->c, in->t + h));
-    TRY(f->SetContinuousStates(in->c, x, ROD_NX));
+    TRY(f->SetContinuousStates(in->c, x, MODEL_NX));
     TRY(f->CompletedIntegratorStep(in->c, fmi2True, &enter_event, &terminate));
     if (st == fmi2OK) in->t += h;
     return st;
+}
+
+fmi2Status set_fixed_parameter(Inst *in)
+{
+    const MdVariable *p = md_var(md_first(MD_PARAMETER, MD_FIXED));
+    if (!CHECK(p != NULL, "modelDescription.xml has no fixed Real parameter")) return fmi2Fatal;
+    const fmi2ValueReference vr = p->vr;
+    return f->SetReal(in->c, &vr, 1, &p->start);
 }
 
 bool inst_reach(Inst *in, State state, bool logging)
@@ -94,12 +103,8 @@ bool inst_reach(Inst *in, State state, bool logging)
             TRY(f->EnterEventMode(in->c));
         }
         if (state == ME_TERMINATED) TRY(f->Terminate(in->c));
-        if (state == ME_ERROR && st == fmi2OK) {
-            /* A fixed parameter set after initialization is an error. */
-            const fmi2ValueReference vr = VR_EPSILON;
-            const double eps = 1e-3;
-            st = f->SetReal(in->c, &vr, 1, &eps) == fmi2Error ? fmi2OK : fmi2Fatal;
-        }
+        if (state == ME_ERROR && st == fmi2OK)
+            st = set_fixed_parameter(in) == fmi2Error ? fmi2OK : fmi2Fatal;
     }
     if (!CHECK(st == fmi2OK, "reaching %s: %s (%s)", STATE_NAME[state], status_name(st), harness.last_message)) {
         f->FreeInstance(in->c);

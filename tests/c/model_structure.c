@@ -57,3 +57,23 @@ void md_mode_sets(MdMode mode, int max, int *unknowns, int *nu, int *knowns, int
         if (md_known_of_mode(mode, k)) knowns[(*nk)++] = k;
     }
 }
+
+int md_state_index(int i)
+{
+    return i >= 0 && i < MD_N_DERIVATIVES ? md_var(MD_DERIVATIVES[i].index)->derivative : 0;
+}
+
+int md_state_position(int index)
+{
+    for (int i = 0; i < MD_N_DERIVATIVES; ++i)
+        if (md_state_index(i) == index) return i;
+    return -1;
+}
+
+int md_first(MdCausality causality, MdVariability variability)
+{
+    for (int k = 1; k <= MD_N_VARIABLES; ++k)
+        if (md_var(k)->type == MD_REAL && md_var(k)->causality == causality && md_var(k)->variability == variability)
+            return k;
+    return 0;
+}

@@ -25,6 +25,10 @@ typedef struct {
     double start;      /* Boolean: 0 or 1; String: unused */
     int derivative;    /* index of the variable this one is the derivative of, 0 if none */
     bool state;        /* a continuous-time state: named by a <Derivatives> unknown */
+    bool has_min;      /* the type element's min and max, where given */
+    double min;
+    bool has_max;
+    double max;
 } MdVariable;
 
 /* An <Unknown>: ScalarVariable index (1-based), its dependencies (indices);
@@ -43,6 +47,14 @@ extern const MdUnknown MD_EVENTINDICATORS[];
 extern const int MD_N_EVENTINDICATORS;
 
 const MdVariable *md_var(int index);
+
+/* Continuous state i of the state vector (FMI 2.0: the order of <Derivatives>):
+ * its variable's index; and the position of variable `index` in that vector
+ * (-1 if it is no state). */
+int md_state_index(int i);
+int md_state_position(int index);
+/* The first Real variable with this causality and variability (0: none). */
+int md_first(MdCausality causality, MdVariability variability);
 
 /* The modes in which the standard defines the unknowns and knowns of
  * fmi2GetDirectionalDerivative (FMI 2.0.4 §2.1.9 and §2.2.8). */

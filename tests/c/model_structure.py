@@ -36,6 +36,11 @@ def default_initial(causality, variability):
     return "exact" if variability == "constant" else "calculated"   # output, local
 
 
+def bound(value):
+    """A min or max attribute as the tables' (present, value) pair."""
+    return "false, 0" if value is None else f"true, {value}"
+
+
 def c_string(s):
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
@@ -49,7 +54,8 @@ def read_fmi2(root):
         variables.append(dict(
             name=sv.get("name"), vr=int(sv.get("valueReference")), type=typed.tag, causality=causality,
             variability=variability, initial=sv.get("initial", default_initial(causality, variability)),
-            start=typed.get("start"), derivative=int(typed.get("derivative", "0"))))
+            start=typed.get("start"), derivative=int(typed.get("derivative", "0")),
+            min=typed.get("min"), max=typed.get("max")))
     structure = root.find("ModelStructure")
     lists = {section: [] for section in SECTIONS}
     for section in ("Outputs", "Derivatives", "InitialUnknowns"):
@@ -68,7 +74,7 @@ def read_fmi3(root):
         variables.append(dict(
             name=v.get("name"), vr=int(v.get("valueReference")), type=FMI3_TYPES[v.tag], causality=causality,
             variability=variability, initial=v.get("initial", default_initial(causality, variability)),
-            start=v.get("start"), derivative=v.get("derivative")))
+            start=v.get("start"), derivative=v.get("derivative"), min=v.get("min"), max=v.get("max")))
     index_of_vr = {v["vr"]: k for k, v in enumerate(variables, start=1)}
     for v in variables:   # FMI 3.0's derivative attribute is a value reference
         v["derivative"] = index_of_vr[int(v["derivative"])] if v["derivative"] is not None else 0
@@ -98,7 +104,7 @@ def main(xml_path, out_path):
         out.append(f"    {{ {c_string(v['name'])}, {v['vr']}u, MD_{v['type'].upper()}, MD_{v['causality'].upper()}, "
                    f"MD_{v['variability'].upper()}, MD_INITIAL_{v['initial'].upper()}, "
                    f"{'true' if start is not None else 'false'}, {start_num}, {v['derivative']}, "
-                   f"{'true' if k in states else 'false'} }},")
+                   f"{'true' if k in states else 'false'}, {bound(v['min'])}, {bound(v['max'])} }},")
     out.append("};")
     out.append(f"const int MD_N_VARIABLES = {len(variables)};")
     out.append("")

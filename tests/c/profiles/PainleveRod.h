@@ -1,0 +1,32 @@
+/* What the FMI 2.0 driver and fuzz target need to know of PainleveRod beyond
+ * its modelDescription.xml (which gives them the variables, their ranges and
+ * the ModelStructure): the CMake function add_model_checks includes it as
+ * DRIVER_PROFILE. */
+#ifndef DRIVER_PROFILE_H
+#define DRIVER_PROFILE_H
+
+#include <math.h>
+
+/* The knob the runs turn: the parameter that sets the contact's compliance,
+ * and its value for the paper's epsilon (runs at 0.05 or 0.1 cross a few
+ * events cheaply); the stiffest contact it allows. */
+#define PROFILE_KNOB VR_EPSILON
+#define PROFILE_KNOB_VALUE(epsilon) (epsilon)
+#define PROFILE_STIFFEST 1e-8
+
+/* The bound config.h puts on every state (the XML gives none). */
+#define PROFILE_STATE_BOUND 1e6
+
+/* A point inside one mode, away from its switching surfaces (in contact,
+ * slipping forward), so that central differences stay in it; a nonlinear
+ * compliance law (kappa, beta > 0: differences in them may step both ways). */
+#define PROFILE_DD_START                                                                                 \
+    { { VR_MU, 1.0 },    { VR_V, 0.2 },   { VR_Y, -2e-7 },   { VR_W, -1e-4 },                            \
+      { VR_THETA, 0.3 }, { VR_PHI, 0.4 }, { VR_KAPPA, 0.5 }, { VR_BETA, 0.5 } }
+
+/* The fuzz target's budget of integrated time per input, and the longest
+ * step it takes beyond it (it comes to rest: a step of any size). */
+#define PROFILE_FUZZ_SPAN 2.0
+#define PROFILE_FUZZ_LONGEST_STEP INFINITY
+
+#endif
