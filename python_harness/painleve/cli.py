@@ -298,7 +298,8 @@ def cmd_couple(args):
     difference = on_rod - on_table
     print(f"impulse of F_N over the run: on the rod {on_rod:.6g} N s (its momentum), on the table {on_table:.6g} N s "
           f"(the inputs it held); difference {difference:+.3g} N s ({difference / on_table:+.2%}), the zero-order "
-          f"hold's O(h) error: it halves with --step")
+          f"hold's error: O(h) once h is well below the contact time (a contact shorter than a step escapes the "
+          f"samples)")
     print(f"at t = {args.stop:g}: rod y = {r['rod.y'][-1]:.6g} m, w = {r['rod.w'][-1]:.6g} m/s, "
           f"theta = {r['rod.theta'][-1]:.6g}; table z = {r['table.position'][-1]:.6g} m, "
           f"z' = {r['table.velocity'][-1]:.6g} m/s")
