@@ -17,6 +17,7 @@ import pathlib
 import signal
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import asdict, dataclass
 
@@ -41,6 +42,11 @@ class FmuBlob:
 
 
 _EXPERIMENTS = {}   # in each process: (FMU digest, fmi_type) -> Experiment
+# Held while a batch runs: a worker's batch runs in its executor thread, and the driver's
+# clean-up (client.run(_close_experiments)) in another; freeing an FMU instance that CVode is
+# integrating in the first corrupts the heap (glibc: "free(): corrupted unsorted chunks",
+# seen when a sweep is interrupted with batches in flight).
+_IN_USE = threading.Lock()
 
 
 def experiment_for(blob, fmi_type, tmp_dir=None):
@@ -61,9 +67,17 @@ def experiment_for(blob, fmi_type, tmp_dir=None):
 
 @atexit.register
 def _close_experiments():
-    for experiment in _EXPERIMENTS.values():
-        experiment.close()
-    _EXPERIMENTS.clear()
+    """Frees this process's FMU instances and extracted files, unless a batch is running: then
+    they are in use, and go when the process ends (a local worker's files with the driver's
+    directory)."""
+    if not _IN_USE.acquire(blocking=False):
+        return
+    try:
+        for experiment in _EXPERIMENTS.values():
+            experiment.close()
+        _EXPERIMENTS.clear()
+    finally:
+        _IN_USE.release()
 
 
 def predictions(case):
@@ -92,8 +106,9 @@ def case_row(experiment, case, case_id):
 
 def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
     """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
-    experiment = experiment_for(blob, fmi_type, tmp_dir)
-    return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
+    with _IN_USE:
+        experiment = experiment_for(blob, fmi_type, tmp_dir)
+        return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
 
 
 @dataclass
