@@ -186,7 +186,7 @@ void instance_set(Instance *in, unsigned int vr, double value)
 {
     const VariableInfo *info = model_variable(vr);
     const bool input = info && info->kind == KIND_INPUT;
-    const bool changed = input && model_get(&in->model, vr) != value;
+    const bool changed = input && model_stored(&in->model, vr) != value;   /* an input is stored as set */
     model_set(&in->model, vr, value);
     if (input && (model_input_set(&in->model, vr, in->time) || changed)) in->inputs_jumped = true;
 }

@@ -3,7 +3,6 @@
 #include "model.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 /* ------------------------------------------------------------ variables */
@@ -111,12 +110,8 @@ void model_begin_integration(Model *m)
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     model_update(m);
-    RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, &r);
+    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, e);
     model_touch(m);
-    e->switched = r.switched;
-    e->states_changed = r.states_changed;
-    snprintf(e->text, sizeof e->text, "%s", r.text);
     return ok;
 }
 
@@ -135,21 +130,14 @@ static int parameter_column(unsigned int vr)
     }
 }
 
-const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
-    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
-    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
-    if (!k || !model_settable(k)) return "the known is neither a state nor a parameter";
-    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
-        *value = unknown == known;
-        return NULL;
-    }
     if (m->partials_stale) {
         rod_partials(&m->params, m->run.mode, m->x, &m->partials);
         m->partials_stale = false;
     }
     const RodPartials *d = &m->partials;
-    const bool by_state = k->kind == KIND_STATE;
+    const bool by_state = model_variable(known)->kind == KIND_STATE;
     const int col = by_state ? (int)(known - VR_X) : parameter_column(known);
     if (unknown >= VR_DER_X && unknown <= VR_DER_PHI) {
         const int row = (int)(unknown - VR_DER_X);

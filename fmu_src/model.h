@@ -8,6 +8,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "model_event.h"
+
 /* The model's own metadata: its directory comes first on the include path
  * (CMakeLists.txt), so each model built on this interface gets its own. */
 #include <config.h>
@@ -112,12 +114,6 @@ void model_start(Model *m, double time, char *text, size_t size);
 /* Integration (re)starts from the current state (the event log's reference). */
 void model_begin_integration(Model *m);
 
-typedef struct {
-    bool states_changed; /* the state was moved: integration must restart */
-    bool switched;       /* the mode changed */
-    char text[768];      /* what happened, for the event log; or why it failed */
-} ModelEvent;
-
 /* The event update at `time`: new modes iterated to a fixpoint, the state
  * moved off every switching surface, the switch recorded. False, with the
  * reason in e->text, if the modes do not settle or too many events fall on
@@ -127,10 +123,15 @@ bool model_event_update(Model *m, double time, ModelEvent *e);
 /* ------------------------------------------------ partial derivatives */
 
 /* d unknown / d known of the current mode's smooth branch, analytic. Unknowns
- * are Reals (a state or parameter is its own identity, a discrete output is
- * frozen between events), knowns states and parameters. NULL on success,
- * else why the pair has none. */
+ * are Reals (a state, input or parameter is its own identity, a discrete output
+ * is frozen between events), knowns states, inputs and parameters. NULL on
+ * success, else why the pair has none. (model_common.c; it asks the model for
+ * the rest, model_calculated_partial.) */
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value);
+
+/* The model's own part of model_partial_derivative: d unknown / d known for a
+ * calculated unknown (not a settable or discrete variable) and a settable known. */
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value);
 
 /* ------------------------------------------------------ FMU state fields */
 

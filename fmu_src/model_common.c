@@ -1,8 +1,8 @@
 /* What every model shares, made once from its config.h: the table of its
  * variables (MODEL_VARIABLES), a variable's field read and written, the fields
- * an FMU state holds, and the accessors of the states and of what the model
+ * an FMU state holds, the accessors of the states and of what the model
  * derives from them (model.h: the Model's x, dx, stale, partials_stale and its
- * model_update). */
+ * model_update), and the partial derivatives every model has. */
 #include "model.h"
 
 #include <math.h>
@@ -109,4 +109,18 @@ void model_get_derivatives(Model *m, double dx[MODEL_NX])
 {
     model_update(m);
     memcpy(dx, m->dx, sizeof m->dx);
+}
+
+/* ------------------------------------------------------ partial derivatives */
+
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
+    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
+    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
+    if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
+    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
+        *value = unknown == known;
+        return NULL;
+    }
+    return model_calculated_partial(m, unknown, known, value);
 }

@@ -52,6 +52,7 @@
 /* model.c: the model interface */
 #define model_assign NAMESPACED(model_assign)
 #define model_begin_integration NAMESPACED(model_begin_integration)
+#define model_calculated_partial NAMESPACED(model_calculated_partial)
 #define model_check_range NAMESPACED(model_check_range)
 #define model_check NAMESPACED(model_check)
 #define model_decide_initial_mode NAMESPACED(model_decide_initial_mode)

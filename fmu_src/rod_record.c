@@ -64,7 +64,7 @@ static void record_switch(RodRecord *r, RodMode before, double time)
 }
 
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      bool floor_jumped, RodEvent *e)
+                      bool floor_jumped, ModelEvent *e)
 {
     char fired[512];
     describe_fired(r, z, fired, sizeof fired);

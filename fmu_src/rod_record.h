@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "model_event.h"
 #include "rod.h"
 
 /* A run of this many events at one instant (no progress in time beyond
@@ -77,19 +78,13 @@ void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double
 /* The initial mode, for the event log. */
 void rod_record_describe_start(const RodRecord *r, char *text, size_t size);
 
-/* What an event update did (model.h's ModelEvent, filled by the model). */
-typedef struct {
-    bool states_changed, switched;
-    char text[768];
-} RodEvent;
-
 /* The event update at `time` (rod_event_update), recorded; z holds the indicators
  * at the event. With `floor_jumped` (the floor's speed changed by an input, not
  * at a located v = 0) the rod slips the way its new relative velocity points,
  * as at the start, and the rules go on from there. False, with the reason in
  * e->text, if the modes do not settle or too many events fall on one instant. */
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      bool floor_jumped, RodEvent *e);
+                      bool floor_jumped, ModelEvent *e);
 
 /* NULL if r (restored from bytes) is a record this model can have, else the
  * name of the first variable that is not. */

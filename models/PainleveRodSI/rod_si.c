@@ -19,7 +19,6 @@
 #include "model.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "model_dependencies.h"
@@ -38,12 +37,17 @@ double si_floor_elapsed(const Model *m, double time)
     return m->floor_moves ? time - m->t_floor : 0.0;
 }
 
+/* The floor's height at `time`: y_floor, moved on at w_floor since it was set. */
+static double floor_height(const Model *m, double time)
+{
+    return m->y_floor + m->w_floor * si_floor_elapsed(m, time);
+}
+
 static Scaling scaling(const Model *m, double time)
 {
     const double U = sqrt(m->g * m->l), per_T = sqrt(m->g / m->l);
-    const double y_floor = m->y_floor + m->w_floor * si_floor_elapsed(m, time);
     return (Scaling){ .scale = { m->l, U, m->l, U, 1, per_T },
-                      .offset = { 0, m->v_floor, y_floor, m->w_floor, 0, 0 },
+                      .offset = { 0, m->v_floor, floor_height(m, time), m->w_floor, 0, 0 },
                       .rate = { 0, m->g, 0, m->g, 0, m->g / m->l } };
 }
 
@@ -104,7 +108,7 @@ const char *model_check(unsigned int vr, double value)
 static void outputs(Model *m)
 {
     const double *x = m->x, l = m->l, sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), phi = x[ROD_PHI];
-    const double mg = m->m * m->g, gap = x[ROD_Y] - (m->y_floor + m->w_floor * si_floor_elapsed(m, m->time));
+    const double mg = m->m * m->g, gap = x[ROD_Y] - floor_height(m, m->time);
     double *out = m->out;
     out[SI_F_N] = mg * rod_normal_force(&m->rod, m->run.mode, m->xs);
     out[SI_F_T] = mg * rod_friction_force(&m->rod, m->run.mode, m->xs);
@@ -225,29 +229,18 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     /* A belt that changed speed leaves the rod's own velocity as it was. */
     const bool belt_jumped = m->v_floor != m->v_floor_decided;
     m->v_floor_decided = m->v_floor;
-    RodEvent r;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, &r);
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, e);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
     model_touch(m);
-    e->switched = r.switched;
-    e->states_changed = r.states_changed;
-    snprintf(e->text, sizeof e->text, "%s", r.text);
     return ok;
 }
 
 /* ------------------------------------------------ partial derivatives */
 
-const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
-    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
-    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
-    if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
-    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
-        *value = unknown == known;
-        return NULL;
-    }
     /* A pair the model description does not declare is 0 by the structure of the
      * equations; the chain rule below would give round-off there. */
     if (!model_depends(unknown, known)) {

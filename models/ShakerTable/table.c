@@ -159,15 +159,8 @@ static double acceleration_partial(const Model *m, unsigned int known)
     }
 }
 
-const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
-    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
-    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
-    if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
-    if (model_settable(u)) {   /* a known itself */
-        *value = unknown == known;
-        return NULL;
-    }
     model_update(m);
     const TableParams *p = &m->params;
     const double omega = TWO_PI * p->frequency, t = m->time;

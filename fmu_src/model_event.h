@@ -1,0 +1,15 @@
+/* What a model's event update did (model.h), in a header of its own so that a
+ * model's shared parts (rod_record.h), which config.h includes before model.h
+ * is complete, can fill it in. */
+#ifndef MODEL_EVENT_H
+#define MODEL_EVENT_H
+
+#include <stdbool.h>
+
+typedef struct {
+    bool states_changed; /* the state was moved: integration must restart */
+    bool switched;       /* the mode changed */
+    char text[768];      /* what happened, for the event log; or why it failed */
+} ModelEvent;
+
+#endif
