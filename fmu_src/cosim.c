@@ -17,9 +17,6 @@
 
 #include "sundials_compat.h"
 
-/* A run of internal steps this long between two stops is a failure, not a wait. */
-#define MAX_STEPS_PER_ADVANCE 200000
-
 struct CoSim {
     SUNContext ctx;
     N_Vector y, abstol;
@@ -106,7 +103,6 @@ static const char *create(CoSim *cs, double t)
     if (CVodeRootInit(cs->cvode, MODEL_NZ, roots) != CV_SUCCESS) return "CVodeRootInit";
     if (CVodeSetLinearSolver(cs->cvode, cs->solver, cs->A) != CV_SUCCESS) return "CVodeSetLinearSolver";
     if (CVodeSetJacFn(cs->cvode, jacobian) != CV_SUCCESS) return "CVodeSetJacFn";
-    if (CVodeSetMaxNumSteps(cs->cvode, MAX_STEPS_PER_ADVANCE) != CV_SUCCESS) return "CVodeSetMaxNumSteps";
     if (CVodeSetNoInactiveRootWarn(cs->cvode) != CV_SUCCESS) return "CVodeSetNoInactiveRootWarn";
     return NULL;
 }
@@ -138,7 +134,7 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
     return true;
 }
 
-CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, char *err, size_t n)
+CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n)
 {
     cs->model = m;
     cs->error.text[0] = '\0';
@@ -151,7 +147,21 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, char *er
         snprintf(err, n, "CVODE refused the stop time %.17g: %s", t_end, cs->error.text);
         return COSIM_FAILED;
     }
+    long before = 0, after = 0;
+    if (*steps_left <= 0) return COSIM_BUDGET;
+    if (CVodeSetMaxNumSteps(cs->cvode, *steps_left) != CV_SUCCESS || CVodeGetNumSteps(cs->cvode, &before) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE refused its step budget: %s", cs->error.text);
+        return COSIM_FAILED;
+    }
     const int flag = CVode(cs->cvode, t_end, cs->y, &reached, CV_NORMAL);
+    CVodeGetNumSteps(cs->cvode, &after);
+    *steps_left -= after - before;
+    if (flag == CV_TOO_MUCH_WORK) { /* CVODE stands at `reached` with a valid state and can go on */
+        model_set_states(m, N_VGetArrayPointer(cs->y));
+        *t = reached;
+        *steps_left = 0;
+        return COSIM_BUDGET;
+    }
     if (flag < 0) {
         snprintf(err, n, "CVODE failed at t = %.17g: %s", reached, cs->error.text);
         return COSIM_FAILED;

@@ -12,7 +12,9 @@
 
 typedef struct CoSim CoSim;
 
-typedef enum { COSIM_REACHED, COSIM_EVENT, COSIM_FAILED } CoSimResult;
+/* COSIM_BUDGET: the internal steps allowed ran out before t_end or a root
+ * (the state is CVODE's at the time reached, and integration can go on). */
+typedef enum { COSIM_REACHED, COSIM_EVENT, COSIM_BUDGET, COSIM_FAILED } CoSimResult;
 
 CoSim *cosim_new(void);
 void cosim_free(CoSim *cs);
@@ -21,8 +23,9 @@ void cosim_free(CoSim *cs);
  * absolute tolerances rtol * nominal. False, with a message, on failure. */
 bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n);
 
-/* Integrates from *t towards t_end, stopping exactly there or at the first
- * root of an event indicator; the model's state and *t follow. */
-CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, char *err, size_t n);
+/* Integrates from *t towards t_end, stopping exactly there, at the first
+ * root of an event indicator, or after *steps_left internal steps; the
+ * model's state and *t follow, and *steps_left loses the steps taken. */
+CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n);
 
 #endif

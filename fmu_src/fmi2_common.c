@@ -94,8 +94,8 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     REQUIRE("fmi2SetupExperiment", !stopTimeDefined || (isfinite(stopTime) && stopTime >= startTime),
             "stopTime = %g must be finite and >= startTime = %g", stopTime, startTime);
     in->time = startTime;
-    in->tolerance = toleranceDefined ? tolerance : MODEL_DEFAULT_TOLERANCE;
-    return fmi2OK;
+    const Status status = instance_set_tolerance(in, "fmi2SetupExperiment", toleranceDefined, tolerance);
+    return (fmi2Status)status;
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)

@@ -145,9 +145,9 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
     REQUIRE(call, !stopTimeDefined || (isfinite(stopTime) && stopTime >= startTime),
             "stopTime = %g must be finite and >= startTime = %g", stopTime, startTime);
     in->time = startTime;
-    in->tolerance = toleranceDefined ? tolerance : MODEL_DEFAULT_TOLERANCE;
+    const Status status = instance_set_tolerance(in, call, toleranceDefined, tolerance);
     in->state = InitializationMode;
-    return fmi3OK;
+    return (fmi3Status)status;
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)

@@ -49,11 +49,11 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                               : self->event_mode_used     ? RETURN_AT_EVENT
                                                           : RETURN_AFTER_EVENT;
     StepEnd end;
-    if (instance_step(in, call, currentCommunicationPoint, communicationStepSize, policy, &end) != STATUS_OK)
-        return fmi3Error;
+    const Status s = instance_step(in, call, currentCommunicationPoint, communicationStepSize, policy, &end);
+    if (s == STATUS_ERROR) return fmi3Error;
     *earlyReturn = end == STEP_EVENT;
     *eventHandlingNeeded = self->event_pending = end == STEP_EVENT && policy == RETURN_AT_EVENT;
     *terminateSimulation = fmi3False;
     *lastSuccessfulTime = in->last_successful_time;
-    return fmi3OK;
+    return s == STATUS_DISCARD ? fmi3Discard : fmi3OK;
 }

@@ -93,6 +93,19 @@ Status instance_fail(Instance *in, const char *call, const char *fmt, ...)
     return STATUS_ERROR;
 }
 
+Status instance_set_tolerance(Instance *in, const char *call, bool defined, double tolerance)
+{
+    const double wanted = defined ? tolerance : MODEL_DEFAULT_TOLERANCE;
+    in->tolerance = fmin(fmax(wanted, INSTANCE_TOLERANCE_MIN), INSTANCE_TOLERANCE_MAX);
+    if (in->tolerance == wanted || in->interface != CO_SIMULATION) return STATUS_OK;
+    char text[512];
+    snprintf(text, sizeof text, "%s: tolerance = %g is outside %g to %g, the range in which a step's answer is "
+             "right: the embedded solver uses %g", call, wanted, INSTANCE_TOLERANCE_MIN, INSTANCE_TOLERANCE_MAX,
+             in->tolerance);
+    emit(in, STATUS_WARNING, LOG_WARNING, text);
+    return STATUS_WARNING;
+}
+
 Status instance_discard(Instance *in, const char *call, const char *fmt, ...)
 {
     va_list ap;

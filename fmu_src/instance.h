@@ -75,6 +75,19 @@ Status instance_fail(Instance *in, const char *call, const char *fmt, ...);
  * the FMU cannot answer; the instance stays as it was. */
 Status instance_discard(Instance *in, const char *call, const char *fmt, ...);
 
+/* The relative tolerances for which Co-Simulation's answers are right
+ * (docs/bounded_calls.md): above the range the solver's error reaches the
+ * contact's own scales and the mode sequence can change; below it CVODE asks
+ * for more digits than a double has. */
+#define INSTANCE_TOLERANCE_MIN 1e-12
+#define INSTANCE_TOLERANCE_MAX 1e-3
+
+/* The master's tolerance (the DefaultExperiment's if not defined), clamped
+ * to the range above: in Co-Simulation a clamp is logged and answers
+ * STATUS_WARNING; in Model Exchange the importer's solver uses the tolerance,
+ * not the FMU, so it is kept quietly. */
+Status instance_set_tolerance(Instance *in, const char *call, bool defined, double tolerance);
+
 /* The model, with the initial mode decided while initializing. */
 Model *instance_model(Instance *in);
 

@@ -8,6 +8,7 @@
  * state get and set. So the FMU state is still just the model's. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 
 #include "instance.h"
 
@@ -30,6 +31,36 @@ static Status restart(Instance *in, const char *call)
     return STATUS_OK;
 }
 
+/* What one Co-Simulation call may spend (docs/bounded_calls.md). An IWC takes
+ * 4 events and at most a few hundred CVODE steps at any eps in 1e-8..1 (286
+ * at eps = 1e-6); a doStep over many bounces or O(1) of sustained contact
+ * takes more, so the budgets allow thousands of such cases in one call and
+ * still return within about a second here. A master whose step needs more
+ * gets fmi2Discard / fmi3Discard at the time reached and goes on from there. */
+#define MAX_SOLVER_STEPS_PER_CALL 300000L
+#define MAX_EVENTS_PER_CALL 20000L
+
+/* The state where a budget ran out, by the states' names, for the log line. */
+static void describe_states(const Instance *in, char *text, size_t size)
+{
+    double x[MODEL_NX];
+    size_t n = 0;
+    model_get_states(&in->model, x);
+    text[0] = '\0';
+    for (size_t i = 0; i < MODEL_NX && n < size; ++i)
+        n += (size_t)snprintf(text + n, size - n, "%s%s = %.6g", i ? ", " : "",
+                              model_variable(model_state_vr(i))->name, x[i]);
+}
+
+static Status out_of_budget(Instance *in, const char *call, long budget, const char *what, double t_end)
+{
+    char states[384];
+    describe_states(in, states, sizeof states);
+    return instance_discard(in, call, "the budget of %ld %s per call is spent at t = %.17g, before the step's end "
+                            "%.17g (%s): the step stops there; go on from that last successful time, or with "
+                            "smaller steps", budget, what, in->time, t_end, states);
+}
+
 static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
 {
     if (!in->solver) in->solver = cosim_new();
@@ -42,15 +73,18 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
     }
     if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
     const double t_start = in->time;
+    long steps_left = MAX_SOLVER_STEPS_PER_CALL;
+    long events = 0;
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
     while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
         char err[512];
-        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, err, sizeof err);
+        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, &steps_left, err, sizeof err);
         if (r == COSIM_FAILED) {
             in->solver_live = false;
             return instance_fail(in, call, "%s", err);
         }
         if (r == COSIM_REACHED) break;
+        if (r == COSIM_BUDGET) return out_of_budget(in, call, MAX_SOLVER_STEPS_PER_CALL, "solver steps", t_end);
         /* CVODE continues from its own last time, which a master's communication point may pass
          * by rounding errors: a root it locates before the step's start is at the start. */
         in->time = fmax(in->time, t_start);
@@ -66,6 +100,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
             *end = STEP_EVENT;
             return STATUS_OK;
         }
+        if (++events >= MAX_EVENTS_PER_CALL) return out_of_budget(in, call, MAX_EVENTS_PER_CALL, "events", t_end);
     }
     in->time = t_end;
     return STATUS_OK;
@@ -97,7 +132,8 @@ Status instance_step(Instance *in, const char *call, double t, double h, StepPol
         return instance_fail(in, call, "communicationStepSize = %g must be finite and > 0", h);
     in->time = t;    /* the master's point: where the step starts, and nothing it reports comes before */
     model_step_begin(&in->model, t);
-    if (integrate(in, call, t + h, policy, end) != STATUS_OK) return STATUS_ERROR;
-    in->last_successful_time = in->time;
-    return STATUS_OK;
+    const Status s = integrate(in, call, t + h, policy, end);
+    if (s == STATUS_ERROR) return s;
+    in->last_successful_time = in->time;   /* a Discard's too: the state is valid there */
+    return s;
 }

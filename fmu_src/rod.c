@@ -17,6 +17,7 @@
  *      -1           (slipping in contact) nothing to watch */
 #include "rod.h"
 
+#include <float.h>
 #include <math.h>
 
 static int sign_of(double f) { return (f > 0) - (f < 0); }
@@ -209,6 +210,28 @@ void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX],
     }
 }
 
+/* The rounding error of each indicator as computed at x: a few ulps of the
+ * largest term it sums. An indicator within it of 0 is on its surface, since
+ * its sign there is the rounding's (h = -y/eps + kappa d^2 - delta w (1 + beta d)
+ * cancels terms of 1e4 and more deep in the floor: a sign that flips with the
+ * last bit of y). The states themselves (y, v, w) are exact. */
+static void indicator_noise(const RodParams *p, RodMode m, const double x[ROD_NX], double noise[ROD_NZ])
+{
+    const double ulps = 8 * DBL_EPSILON;
+    const double yh = x[ROD_Y] / p->epsilon, d = yh < 0 ? -yh : 0.0;
+    noise[ROD_Z_Y] = 0;
+    noise[ROD_Z_FORCE] = ulps * (fabs(yh) + p->kappa * d * d + fabs(p->delta * (1 + p->beta * d) * x[ROD_W]));
+    noise[ROD_Z_SLIP] = noise[ROD_Z_AUX] = 0;
+    if (sticking(m)) {
+        const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
+        const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], phi);
+        const double F = fabs(rod_normal_force(p, m, x));
+        const double a_terms = phi * phi * fabs(c) + fabs(p->f_x) + p->alpha * fabs(s * p->tau);
+        noise[ROD_Z_SLIP] = ulps * (a_terms + fabs(k.q_plus) * F);
+        noise[ROD_Z_AUX] = ulps * (a_terms + fabs(k.q_minus) * F);
+    }
+}
+
 void rod_nominals(const RodParams *p, double nominal[ROD_NX])
 {
     const double eps = p->epsilon;
@@ -239,7 +262,10 @@ static bool in_contact(const RodParams *p, const double x[ROD_NX], double b)
 {
     const double eps = p->epsilon, w = x[ROD_W];
     const RodCompliance h = rod_compliance(p, x[ROD_Y], w);
-    return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(h.h, h.h_yh * (w / eps) + h.h_w * b, h.h_yh * (b / eps)) > 0;
+    double noise[ROD_NZ];
+    indicator_noise(p, (RodMode){ true, 1 }, x, noise);
+    const double h0 = fabs(h.h) > noise[ROD_Z_FORCE] ? h.h : 0.0;   /* on F_N = 0: decided by h' */
+    return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(h0, h.h_yh * (w / eps) + h.h_w * b, h.h_yh * (b / eps)) > 0;
 }
 
 /* Slip direction at v = 0 in contact: stick inside the Filippov cone
@@ -307,15 +333,22 @@ static int steepest_state(const RodParams *p, RodMode m, int i, const double x[R
     return best;
 }
 
+/* Whether indicator i, at z with rounding error `noise`, is clear of its surface on `side`. */
+static bool clear_of(double z, double noise, int side)
+{
+    return sign_of(z) == side && fabs(z) > noise;
+}
+
 bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool *moved)
 {
-    double z[ROD_NZ], nominal[ROD_NX];
+    double z[ROD_NZ], nominal[ROD_NX], noise[ROD_NZ];
     *moved = false;
     rod_nominals(p, nominal);
     for (int i = 0; i < ROD_NZ; ++i) {
         rod_event_indicators(p, m, x, z);
+        indicator_noise(p, m, x, noise);
         const int side = wanted_side(p, m, i, x);
-        if (z[i] != 0 || side == 0) continue;
+        if (side == 0 || fabs(z[i]) > noise[i]) continue;
         int direction = 0;
         const int state = steepest_state(p, m, i, x, nominal, &direction);
         if (state < 0) return false;
@@ -325,7 +358,8 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool
         for (double step = 1e-15 * nominal[state]; step < nominal[state] && !left; step *= 2) {
             x[state] = start + side * direction * step;
             rod_event_indicators(p, m, x, z);
-            left = sign_of(z[i]) == side;
+            indicator_noise(p, m, x, noise);
+            left = clear_of(z[i], noise[i], side);
         }
         *moved = true;
         if (!left) return false;
