@@ -32,12 +32,13 @@ static Status restart(Instance *in, const char *call)
 }
 
 /* What one Co-Simulation call may spend (docs/bounded_calls.md). An IWC takes
- * 4 events and at most a few hundred CVODE steps at any eps in 1e-8..1 (286
- * at eps = 1e-6); a doStep over many bounces or O(1) of sustained contact
- * takes more, so the budgets allow thousands of such cases in one call and
- * still return within about a second here. A master whose step needs more
- * gets fmi2Discard / fmi3Discard at the time reached and goes on from there. */
-#define MAX_SOLVER_STEPS_PER_CALL 300000L
+ * 4 events and a few hundred CVODE steps (286 at eps = 1e-6); a rod resting
+ * on the floor at eps = 1e-8 about 4e4 steps per time unit, one spinning at
+ * phi = 3e4 about 4e5 (a contact every 2e-4). At 2-20 us a step here the
+ * budgets hold hundreds of IWCs and return within a few seconds. A master
+ * whose step needs more gets fmi2Discard / fmi3Discard at the time reached
+ * (its last successful time) and goes on from there with smaller steps. */
+#define MAX_SOLVER_STEPS_PER_CALL 200000L
 #define MAX_EVENTS_PER_CALL 20000L
 
 /* The state where a budget ran out, by the states' names, for the log line. */

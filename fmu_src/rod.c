@@ -339,7 +339,7 @@ static bool clear_of(double z, double noise, int side)
     return sign_of(z) == side && fabs(z) > noise;
 }
 
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool *moved)
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved)
 {
     double z[ROD_NZ], nominal[ROD_NX], noise[ROD_NZ];
     *moved = false;
@@ -348,18 +348,18 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool
         rod_event_indicators(p, m, x, z);
         indicator_noise(p, m, x, noise);
         const int side = wanted_side(p, m, i, x);
-        if (side == 0 || fabs(z[i]) > noise[i]) continue;
+        if (side == 0 || fabs(z[i]) > margin * noise[i]) continue;
         int direction = 0;
         const int state = steepest_state(p, m, i, x, nominal, &direction);
         if (state < 0) return false;
         const double start = x[state];
         bool left = false;
         /* The smallest step, doubling from 1e-15 nominal, that leaves the surface. */
-        for (double step = 1e-15 * nominal[state]; step < nominal[state] && !left; step *= 2) {
+        for (double step = 1e-15 * margin * nominal[state]; step < nominal[state] && !left; step *= 2) {
             x[state] = start + side * direction * step;
             rod_event_indicators(p, m, x, z);
             indicator_noise(p, m, x, noise);
-            left = clear_of(z[i], noise[i], side);
+            left = clear_of(z[i], margin * noise[i], side);
         }
         *moved = true;
         if (!left) return false;
@@ -367,7 +367,7 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool
     return true;
 }
 
-RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed)
+RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], double margin, bool *x_changed)
 {
     *x_changed = false;
     /* decide and move-off must reach a fixpoint; a few rounds always do
@@ -379,7 +379,7 @@ RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX]
         const bool same = n.contact == m->contact && n.slip == m->slip;
         *m = n;
         if (!same || changed) continue;
-        const bool off = rod_move_off_surfaces(p, *m, x, &moved);
+        const bool off = rod_move_off_surfaces(p, *m, x, margin, &moved);
         *x_changed |= moved;
         if (!off) return ROD_STUCK_ON_SURFACE;
         if (!moved) return ROD_SETTLED;

@@ -94,16 +94,19 @@ void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
  * May set v to exactly 0 (entering or re-deciding stick); says so in *x_changed. */
 RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed);
 
-/* Moves x off every switching surface on which an indicator of mode m is
- * exactly 0, towards the side mode m lives on, so that no importer restarts
- * integration on a root. Sets *moved if x changed; returns false if a
- * surface could not be left by a step below the state's nominal. */
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], bool *moved);
+/* Moves x off every switching surface on which an indicator of mode m is 0
+ * to within `margin` times its rounding error, towards the side mode m lives
+ * on and past that, so that no importer restarts integration on a root.
+ * margin >= 1: 1 at a first event; larger where the importer's solver came
+ * straight back to the surface (its error exceeded the move). Sets *moved if
+ * x changed; returns false if a surface could not be left by a step below the
+ * state's nominal. */
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved);
 
 typedef enum { ROD_SETTLED, ROD_PING_PONG, ROD_STUCK_ON_SURFACE } RodEventResult;
 
-/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces. */
-RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], bool *x_changed);
+/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces with `margin`. */
+RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], double margin, bool *x_changed);
 
 const char *rod_indicator_name(const RodMode m, int i);
 

@@ -25,6 +25,7 @@ void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double
     r->initial_event = true;
     r->instant = -INFINITY;
     r->events_at_instant = 0;
+    r->returns = 0;
 }
 
 void rod_record_describe_start(const RodRecord *r, char *text, size_t size)
@@ -71,8 +72,11 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
     r->initial_event = false;
     const RodMode before = r->mode;
     if (floor_jumped && x[ROD_V] != 0) r->mode.slip = x[ROD_V] > 0 ? +1 : -1;
+    /* After an event that switched nothing, the importer's solver came back to a surface
+     * the state had been moved off: its error exceeds the move. Each such return moves
+     * twice as far, so the chatter ends where the motion goes on (docs/bounded_calls.md). */
     bool moved;
-    const RodEventResult result = rod_event_update(p, &r->mode, x, &moved);
+    const RodEventResult result = rod_event_update(p, &r->mode, x, ldexp(1.0, r->returns), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
     if (result != ROD_SETTLED) {
@@ -83,6 +87,7 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
         return false;
     }
     if (e->switched) record_switch(r, before, time);
+    r->returns = e->switched ? 0 : (r->returns < ROD_MAX_RETURNS ? r->returns + 1 : ROD_MAX_RETURNS);
     snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
              before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
     /* Zeno guard: events that do not advance time beyond round-off. */
@@ -92,7 +97,7 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
     }
     if (++r->events_at_instant < ROD_MAX_EVENTS_AT_ONE_INSTANT) return true;
     snprintf(e->text, sizeof e->text,
-             "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter; last indicator %s; "
+             "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter at the boundary %s; "
              "contact = %d, mode = %+d, theta = %g)",
              ROD_MAX_EVENTS_AT_ONE_INSTANT, time, fired, r->mode.contact, r->mode.slip, x[ROD_THETA]);
     return false;
@@ -106,5 +111,6 @@ const char *rod_record_implausible(const RodRecord *r)
     for (size_t i = 0; i < sizeof times / sizeof times[0]; ++i)
         if (!isfinite(times[i])) return "t_switch";
     if (r->events_at_instant < 0 || r->events_at_instant >= ROD_MAX_EVENTS_AT_ONE_INSTANT) return "events_at_instant";
+    if (r->returns < 0 || r->returns > ROD_MAX_RETURNS) return "returns";
     return NULL;
 }

@@ -16,6 +16,11 @@
  * switches at one instant, and a fast rod's events advance time. */
 #define ROD_MAX_EVENTS_AT_ONE_INSTANT 100
 
+/* Returns to a surface in a row (events that switched nothing) after which the
+ * move off it stops growing: the first trial move is then 2^40 1e-15 = 1e-3 of
+ * the state's nominal, which leaves room below the nominal to double in. */
+#define ROD_MAX_RETURNS 40
+
 typedef struct {
     RodMode mode;
     double t_switch, t_stick_begin, t_stick_end; /* times of the last switch, stick start, stick end */
@@ -25,6 +30,7 @@ typedef struct {
     bool initial_event;                          /* the event iteration right after initialization */
     double instant;                              /* time of the current run of events at one instant */
     int events_at_instant;
+    int returns;                                 /* events in a row that switched nothing */
 } RodRecord;
 
 /* A rod model's continuous states (its Model's x, within +-BOUND) and their
@@ -64,7 +70,8 @@ typedef struct {
     INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)          \
     INTERNAL("initial_event", run.initial_event, BOOLEAN)         \
     INTERNAL("instant", run.instant, REAL)                        \
-    INTERNAL("events_at_instant", run.events_at_instant, INTEGER)
+    INTERNAL("events_at_instant", run.events_at_instant, INTEGER) \
+    INTERNAL("returns", run.returns, INTEGER)
 
 /* Before initialization: the default mode, no record. */
 RodRecord rod_record_new(void);
