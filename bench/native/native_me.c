@@ -41,7 +41,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "fmu_import.h"
-#include "sundials_compat.h" /* fmu_src's: SUNDIALS 6 or 7 */
+#include "sundials_compat.h" /* fmu_src/fmi's: SUNDIALS 6 or 7 */
 
 #define MAX_EVENT_ITERATIONS 1000 /* fmi2NewDiscreteStates calls at one event */
 
