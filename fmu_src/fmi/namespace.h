@@ -38,7 +38,6 @@
 #define rod_partials NAMESPACED(rod_partials)
 
 /* models/PainleveRodSI/rod_si_partials.c */
-#define si_floor_elapsed NAMESPACED(si_floor_elapsed)
 #define si_partial NAMESPACED(si_partial)
 
 /* rod_record.c: the event iteration of a rod model */

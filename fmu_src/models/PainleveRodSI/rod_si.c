@@ -23,6 +23,7 @@
 
 #include "model_dependencies.h"
 #include "rod_si_partials.h"
+#include "si_floor.h"
 
 /* ------------------------------------------------------------ scaling */
 
@@ -31,11 +32,6 @@ typedef struct {
     double offset[ROD_NX];
     double rate[ROD_NX];   /* der(x_j) = rate_j der(xs_j) for v, w, phi: g, g, g/l */
 } Scaling;
-
-double si_floor_elapsed(const Model *m, double time)
-{
-    return m->floor_moves ? time - m->t_floor : 0.0;
-}
 
 /* The floor's height at `time`: y_floor, moved on at w_floor since it was set. */
 static double floor_height(const Model *m, double time)
