@@ -11,7 +11,8 @@
 #include "model_event.h"
 
 /* The model's own metadata: its directory comes first on the include path
- * (CMakeLists.txt), so each model built on this interface gets its own. */
+ * (painleve_model_sources, cmake/PainleveCommon.cmake), so each model built on
+ * this interface, a folder of fmu_src/models, gets its own. */
 #include <config.h>
 
 typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
