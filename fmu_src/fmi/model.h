@@ -148,7 +148,12 @@ extern const ModelField model_fields[];
 extern const size_t model_n_fields;
 
 /* NULL if m (restored from bytes) holds values this model can have, else
- * the name of the first field that does not. */
+ * the name of the first field that does not: every settable variable passes
+ * model_check (model_common.c), then the model's own part, model_internals_implausible. */
 const char *model_implausible(const Model *m);
+
+/* The model's own part of model_implausible: NULL if the data beyond its settable
+ * variables (config.h's internals, its mode) hold values it can have, else a name. */
+const char *model_internals_implausible(const Model *m);
 
 #endif

@@ -64,6 +64,7 @@
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)
+#define model_internals_implausible NAMESPACED(model_internals_implausible)
 #define model_input_set NAMESPACED(model_input_set)
 #define model_indicators_at NAMESPACED(model_indicators_at)
 #define model_jacobian_at NAMESPACED(model_jacobian_at)
