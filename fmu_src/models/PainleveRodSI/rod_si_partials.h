@@ -7,10 +7,6 @@
 
 #include "model.h"
 
-/* How long the floor has moved at w_floor since y_floor was set (rod_si.c; 0 in
- * Model Exchange). */
-double si_floor_elapsed(const Model *m, double time);
-
 /* d unknown / d known at m (derived values and m->partials up to date). */
 double si_partial(const Model *m, unsigned int unknown, unsigned int known);
 

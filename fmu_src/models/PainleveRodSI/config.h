@@ -2,7 +2,7 @@
  * moving floor and applied loads, over the same physics (rod.c) and event
  * iteration (rod_record.c) as PainleveRod. The variable list drives value
  * references, range checks, getters, setters and the FMU state; its order is
- * that of models/PainleveRodSI/modelDescription.xml. docs/si_model.md derives
+ * that of its modelDescription.xml, in this folder. docs/si_model.md derives
  * the equations. */
 #ifndef CONFIG_H
 #define CONFIG_H
@@ -19,7 +19,7 @@
 /* Bounds that keep every scaled quantity finite: lengths, speeds, forces. */
 #define SI_BOUND 1e9
 
-/* VARIABLE(ID, name, type, kind, field, min, max), as in fmu_src/config.h, with
+/* VARIABLE(ID, name, type, kind, field, min, max), as in models/PainleveRod/config.h, with
  * the INPUT and CALCULATED_PARAMETER kinds. Reals first, then Integers, Booleans. */
 #define MODEL_VARIABLES(VARIABLE)                                                                  \
     VARIABLE(M, "m", REAL, PARAMETER, m, 1e-9, 1e9)                                                \

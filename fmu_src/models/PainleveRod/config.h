@@ -1,7 +1,9 @@
 /* PainleveRod's metadata: what the generic FMI layer needs to know of this
  * model, in one place. The variable list below drives the value references,
  * range checks, getters, setters and the FMU state; its order is that of
- * modelDescription.xml (tests/test_fmu_standard.py checks the two agree). */
+ * modelDescription.xml (tests/test_fmu_standard.py checks the two agree),
+ * which is not in this folder but at the repository's top level, where the
+ * spec names it (CMakeLists.txt's painleve_add_model(PainleveRod ...) line). */
 #ifndef CONFIG_H
 #define CONFIG_H
 

@@ -1,11 +1,11 @@
-/* ShakerTable's metadata (see fmu_src/config.h for the pattern): a table top
+/* ShakerTable's metadata (see models/PainleveRod/config.h for the pattern): a table top
  * of mass M on a spring K and a damper C, vertical only, driven by
  * F0 sin(2 pi frequency t) and loaded by the rod's normal force F_N:
  *     M z'' = -K z - C z' + F0 sin(2 pi frequency t) - F_N,
  * z measured from the static equilibrium (gravity is in it). Its surface moves
  * horizontally at belt_speed; the rod's tangential force F_T goes into the
  * table's horizontal guide and the belt's drive. The variable list's order is
- * that of models/ShakerTable/modelDescription.xml (tests/test_shaker_table.py
+ * that of its modelDescription.xml, in this folder (tests/test_shaker_table.py
  * checks the two agree). */
 #ifndef CONFIG_H
 #define CONFIG_H
@@ -22,7 +22,7 @@ enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_NOUT }; /*
 #define STATE_BOUND 1e6
 #define FORCE_BOUND 1e9
 
-/* VARIABLE(ID, name, type, kind, field, min, max) as in fmu_src/config.h;
+/* VARIABLE(ID, name, type, kind, field, min, max) as in models/PainleveRod/config.h;
  * INPUT: set by the master at any time (causality input). */
 #define MODEL_VARIABLES(VARIABLE)                                                          \
     VARIABLE(M, "M", REAL, PARAMETER, params.M, 1e-6, 1e9)                                 \

@@ -37,8 +37,7 @@
 #define rod_normal_force NAMESPACED(rod_normal_force)
 #define rod_partials NAMESPACED(rod_partials)
 
-/* models/PainleveRodSI/rod_si_partials.c */
-#define si_floor_elapsed NAMESPACED(si_floor_elapsed)
+/* models/PainleveRodSI/rod_si_partials.c (below fmu_src) */
 #define si_partial NAMESPACED(si_partial)
 
 /* rod_record.c: the event iteration of a rod model */
@@ -65,6 +64,7 @@
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)
+#define model_internals_implausible NAMESPACED(model_internals_implausible)
 #define model_input_set NAMESPACED(model_input_set)
 #define model_indicators_at NAMESPACED(model_indicators_at)
 #define model_jacobian_at NAMESPACED(model_jacobian_at)

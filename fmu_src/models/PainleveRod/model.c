@@ -151,11 +151,7 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
 
 /* ------------------------------------------------------ FMU state fields */
 
-const char *model_implausible(const Model *m)
+const char *model_internals_implausible(const Model *m)
 {
-    for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
-        const VariableInfo *info = model_variable(vr);
-        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
-    }
     return rod_record_implausible(&m->run);
 }

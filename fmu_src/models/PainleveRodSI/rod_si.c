@@ -23,6 +23,7 @@
 
 #include "model_dependencies.h"
 #include "rod_si_partials.h"
+#include "si_floor.h"
 
 /* ------------------------------------------------------------ scaling */
 
@@ -31,11 +32,6 @@ typedef struct {
     double offset[ROD_NX];
     double rate[ROD_NX];   /* der(x_j) = rate_j der(xs_j) for v, w, phi: g, g, g/l */
 } Scaling;
-
-double si_floor_elapsed(const Model *m, double time)
-{
-    return m->floor_moves ? time - m->t_floor : 0.0;
-}
 
 /* The floor's height at `time`: y_floor, moved on at w_floor since it was set. */
 static double floor_height(const Model *m, double time)
@@ -258,12 +254,8 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
 
 /* ------------------------------------------------------ FMU state fields */
 
-const char *model_implausible(const Model *m)
+const char *model_internals_implausible(const Model *m)
 {
-    for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
-        const VariableInfo *info = model_variable(vr);
-        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
-    }
     if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
     if (!isfinite(m->t_floor) || !isfinite(m->time)) return "t_floor";
     return rod_record_implausible(&m->run);

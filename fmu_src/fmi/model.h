@@ -11,7 +11,8 @@
 #include "model_event.h"
 
 /* The model's own metadata: its directory comes first on the include path
- * (CMakeLists.txt), so each model built on this interface gets its own. */
+ * (painleve_model_sources, cmake/PainleveCommon.cmake), so each model built on
+ * this interface, a folder of fmu_src/models, gets its own. */
 #include <config.h>
 
 typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
@@ -147,7 +148,12 @@ extern const ModelField model_fields[];
 extern const size_t model_n_fields;
 
 /* NULL if m (restored from bytes) holds values this model can have, else
- * the name of the first field that does not. */
+ * the name of the first field that does not: every settable variable passes
+ * model_check (model_common.c), then the model's own part, model_internals_implausible. */
 const char *model_implausible(const Model *m);
+
+/* The model's own part of model_implausible: NULL if the data beyond its settable
+ * variables (config.h's internals, its mode) hold values it can have, else a name. */
+const char *model_internals_implausible(const Model *m);
 
 #endif

@@ -12,6 +12,8 @@
 
 #include <math.h>
 
+#include "si_floor.h"
+
 enum { E_M, E_L, E_J, E_G, E_K, NE };  /* the parameters with exponents: m, l, J, g, k */
 
 /* Exponents of the scales (x_j = offset_j + scale_j xs_j): l, sqrt(g l), l, sqrt(g l), 1, sqrt(g/l). */

@@ -111,6 +111,17 @@ void model_get_derivatives(Model *m, double dx[MODEL_NX])
     memcpy(dx, m->dx, sizeof m->dx);
 }
 
+/* ------------------------------------------------------ FMU state fields */
+
+const char *model_implausible(const Model *m)
+{
+    for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
+        const VariableInfo *info = model_variable(vr);
+        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
+    }
+    return model_internals_implausible(m);
+}
+
 /* ------------------------------------------------------ partial derivatives */
 
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
