@@ -95,10 +95,6 @@ def convert(md2):
     for k, names in enumerate(INDICATOR_DEPENDENCIES):
         ET.SubElement(structure, "EventIndicator", {
             "valueReference": str(first + k), "dependencies": " ".join(vr_of_name[n] for n in names.split())})
-    tool = md2.find("VendorAnnotations/Tool")   # FMI 3.0: a tool's annotation, last, named by its type
-    if tool is not None:
-        annotation = ET.SubElement(ET.SubElement(root, "Annotations"), "Annotation", type=f"org.{tool.get('name')}")
-        annotation.extend(list(tool))
     return root
 
 
