@@ -7,12 +7,11 @@ rod_coefficients (re-exported here) it is the whole of them:
 
 * the rod coefficients a, b, q_pm, p_pm, c_pm (eq coeffs), the Filippov
   sticking coefficients S_w, S_phi (eq Sw), the Painleve wedge mu_P, theta_1,
-  theta_2 (eqs mucrit, thetacrit) and the quadrants of figure fig:GB: see
-  rod_coefficients;
-* the fast eigenvalues lambda_pm (eq lambdapm), the end of slipping
-  compression (eqs z2EpsPi2, initStick), the "horizontal coefficient of
-  restitution" e(delta, theta0) of Proposition prop:stick computed two ways
-  (closed form eq eGeneral and exact integration of eq stickEps0), its
+  theta_2 (eqs mucrit, thetacrit), the quadrants of figure fig:GB and the fast
+  eigenvalues lambda_pm (eq lambdapm): see rod_coefficients;
+* the end of slipping compression (eqs z2EpsPi2, initStick), the "horizontal
+  coefficient of restitution" e(delta, theta0) of Proposition prop:stick computed
+  two ways (closed form eq eGeneral and exact integration of eq stickEps0), its
   asymptotes (eqs eDeltaLarge, eLarge, eDeltaSmall, eLow, eDeltaZero), the
   angular velocity after IWC (Theorem 1), the IWC time scale (eq TT) and the
   separatrix w1* of Theorem 2 (eq w1star);
@@ -30,10 +29,11 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+from . import rigid_limit
 from .hypotheses import HypothesisError, as_result, floats
 from .rod_coefficients import (ALPHA, MU, S_phi, S_w, a, b, c_minus, c_of, c_plus, check_hypotheses, check_theorem1,
-                               check_theorem2, mu_P, p_minus, p_of, p_plus, q_minus, q_of, q_plus, quadrant, s_w_of,
-                               theta_1, theta_2)
+                               check_theorem2, lambda_of, lambda_pm, mu_P, p_minus, p_of, p_plus, q_minus, q_of, q_plus,
+                               quadrant, s_w_of, theta_1, theta_2)
 
 __all__ = [
     "HypothesisError", "SlipCompressionEnd",
@@ -47,22 +47,6 @@ __all__ = [
 
 
 # ------------------------------------------------------------------ Theorem 1
-def _lam(p, delta):
-    """(lambda_+, lambda_-) for p < 0; lambda_- = p/lambda_+ avoids cancellation."""
-    lp = -delta * p / 2 + np.sqrt(delta ** 2 * p ** 2 - 4 * p) / 2  # eq lambdapm
-    return lp, p / lp  # lambda_+ lambda_- = p (eq lambdapm2)
-
-
-def lambda_pm(theta0, delta, *, alpha=ALPHA, mu=MU):
-    """Fast eigenvalues (lambda_+, lambda_-) of compressed contact, eq lambdapm.
-
-    Requires p_+(theta0) < 0 (then lambda_- < 0 < lambda_+) and delta >= 0.
-    """
-    th, al, m = check_hypotheses("lambda_pm (eq lambdapm)", theta0, alpha, mu, delta=delta)
-    lp, lm = _lam(p_of(th, 1.0, al, m), floats(delta))
-    return as_result(lp), as_result(lm)
-
-
 @dataclass(frozen=True)
 class SlipCompressionEnd:
     """State where slipping compression ends (v = 0), eqs z2EpsPi2 / initStick."""
@@ -76,7 +60,7 @@ def slip_compression_end(theta0, phi0, v0, delta, *, alpha=ALPHA, mu=MU):
     """(yhat, w, phi) at the end of slipping compression, eq z2EpsPi2 (eps -> 0)."""
     th, al, m = check_hypotheses("Theorem 1", theta0, alpha, mu, v0=v0, delta=delta)
     pp, qp, cp = p_of(th, 1.0, al, m), q_of(th, 1.0, al, m), c_of(th, 1.0, al, m)
-    lp = _lam(pp, floats(delta))[0]
+    lp = lambda_of(pp, floats(delta))[0]
     v0 = floats(v0)
     return SlipCompressionEnd(yhat=as_result(-pp * v0 / (qp * lp)),  # eq initStick
                               w=as_result(-pp * v0 / qp),
@@ -119,14 +103,14 @@ def e_closed_form(delta, theta0, *, alpha=ALPHA, mu=MU):
     oscillatory (complex xi) cases; see _xi_tau.
     """
     delta, th, pp, qp, sw = _coeffs(delta, theta0, alpha, mu)
-    lp = _lam(pp, delta)[0]
+    lp = lambda_of(pp, delta)[0]
     xip, xim, tau = _xi_tau(delta, sw, lp)
     ee = (xip / xim) * (lp - xim) * pp / (qp * lp) * np.exp(xip * tau)  # eq eGeneral
     return as_result(ee.real)
 
 
 def _e_integrated_one(delta, pp, qp, sw):
-    lp = _lam(pp, delta)[0]
+    lp = lambda_of(pp, delta)[0]
     w0 = -pp / qp  # eq initStick with v0 = 1
     x0 = np.array([w0 / lp, w0])
     A = np.array([[0.0, 1.0], [-sw, -delta * sw]])  # eq stickEps0
@@ -213,14 +197,14 @@ def iwc_time_scale(epsilon, theta0, delta, *, alpha=ALPHA, mu=MU):
     """Leading IWC duration epsilon ln(1/epsilon)/lambda_+ (eq TT, slow time)."""
     th, al, m = check_hypotheses("Theorem 1", theta0, alpha, mu, delta=delta, epsilon=epsilon)
     epsilon = floats(epsilon)
-    return as_result(epsilon * np.log(1 / epsilon) / _lam(p_of(th, 1.0, al, m), floats(delta))[0])  # eq TT
+    return as_result(epsilon * np.log(1 / epsilon) / lambda_of(p_of(th, 1.0, al, m), floats(delta))[0])  # eq TT
 
 
 def w1_star(theta0, phi0, delta, *, alpha=ALPHA, mu=MU):
     """Separatrix w1* = -lambda_- b/p_+ < 0 of Theorem 2, eq w1star (w = eps w10 at y = 0)."""
     th, al, m = check_hypotheses("Theorem 2", theta0, alpha, mu, phi0=phi0, bsign=+1, delta=delta)
     pp = p_of(th, 1.0, al, m)
-    lm = _lam(pp, floats(delta))[1]
+    lm = lambda_of(pp, floats(delta))[1]
     return as_result(-lm * (-1.0 + floats(phi0) ** 2 * np.sin(th)) / pp)  # eq w1star
 
 
@@ -279,7 +263,6 @@ def _e_of(case, rod):
     rigid limit computed numerically for a nonlinear one (rigid_limit, issue #16)."""
     if not (case.kappa or case.beta):
         return e(case.delta, case.theta0, **rod)
-    from . import rigid_limit       # it builds on this module
     return float(rigid_limit.e(case.delta, case.theta0, kappa=case.kappa, beta=case.beta, v0=case.v0, **rod))
 
 

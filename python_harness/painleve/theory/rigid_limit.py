@@ -38,7 +38,8 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
-from . import analytic as an
+from .hypotheses import HypothesisError
+from .rod_coefficients import ALPHA, MU, S_w, lambda_pm, p_plus, q_plus
 
 RTOL, ATOL = 1e-13, 1e-15
 START = 1e-7   # the manifold is entered at |w| = START |w_stick|: its curvature error ~ START^2
@@ -61,13 +62,13 @@ class RigidLimit:
 
 
 def _coefficients(delta, theta0, alpha, mu):
-    """p_+, q_+, S_w, lambda_+ at theta0 (Theorem 1's hypotheses checked by analytic)."""
-    pp = np.asarray(an.p_plus(theta0, alpha=alpha, mu=mu), dtype=float)
-    qp = np.asarray(an.q_plus(theta0, alpha=alpha, mu=mu), dtype=float)
-    sw = np.asarray(an.S_w(theta0, alpha=alpha), dtype=float)
-    lp = np.asarray(an.lambda_pm(theta0, delta, alpha=alpha, mu=mu)[0], dtype=float)
+    """p_+, q_+, S_w, lambda_+ at theta0 (Theorem 1's hypotheses checked by lambda_pm)."""
+    pp = np.asarray(p_plus(theta0, alpha=alpha, mu=mu), dtype=float)
+    qp = np.asarray(q_plus(theta0, alpha=alpha, mu=mu), dtype=float)
+    sw = np.asarray(S_w(theta0, alpha=alpha), dtype=float)
+    lp = np.asarray(lambda_pm(theta0, delta, alpha=alpha, mu=mu)[0], dtype=float)
     if np.any(pp >= 0) or np.any(qp >= 0):
-        raise an.HypothesisError("Theorem 1 needs p_+ < 0 and q_+ < 0 (inside the Painleve wedge)")
+        raise HypothesisError("Theorem 1 needs p_+ < 0 and q_+ < 0 (inside the Painleve wedge)")
     return pp, qp, sw, lp
 
 
@@ -76,11 +77,11 @@ def _broadcast(delta, theta0, kappa, beta, v0):
     if np.any(arrays[0] < 0) or np.any(arrays[2] < 0) or np.any(arrays[3] < 0):
         raise ValueError("delta, kappa and beta must be >= 0 (h decreasing in yh and w, as the FMU requires)")
     if np.any(arrays[4] <= 0):
-        raise an.HypothesisError("Theorem 1 needs v0 > 0")
+        raise HypothesisError("Theorem 1 needs v0 > 0")
     return [a.ravel() for a in arrays], arrays[0].shape
 
 
-def stick_start(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=an.ALPHA, mu=an.MU):
+def stick_start(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=ALPHA, mu=MU):
     """(yh, w) where slipping compression ends, v = 0, at eps = 0.
 
     Why w = -p_+ v0/q_+ still holds for any h: while slipping forward the one
@@ -135,7 +136,7 @@ def _first_roots(sol, f, t_end, n_cases):
     return roots
 
 
-def e_rigid(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=an.ALPHA, mu=an.MU):
+def e_rigid(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=ALPHA, mu=MU):
     """The rigid-limit IWC (RigidLimit, with e) for the compliance law (delta, kappa, beta), by
     `stick_start` and then the stick system yh' = w, w' = S_w h integrated for all cases at once
     until each one's h = 0 (dense output, root refined per case)."""
@@ -177,7 +178,7 @@ def e_rigid(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=an.ALPHA, mu=an
                       yhat_lift=end[0].reshape(shape), tau_stick=tau.reshape(shape))
 
 
-def e(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=an.ALPHA, mu=an.MU):
+def e(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=ALPHA, mu=MU):
     """e(delta, theta0; kappa, beta, v0): the rigid limit's lift-off velocity over v0."""
     return e_rigid(delta, theta0, kappa=kappa, beta=beta, v0=v0, alpha=alpha, mu=mu).e
 
@@ -213,7 +214,7 @@ def _shoot_one(delta, pp, qp, sw, kappa, beta, v0, w_start):
     return second.y_events[0][0][1] / v0, yh, w
 
 
-def shooting(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=an.ALPHA, mu=an.MU, w_start=1e-10):
+def shooting(delta, theta0, *, kappa=0.0, beta=0.0, v0=1.0, alpha=ALPHA, mu=MU, w_start=1e-10):
     """The second method (`_shoot_one`, case by case): (e, yh, w at v = 0). No manifold, no ln w
     parametrisation, v integrated rather than w = -p_+ v0/q_+ assumed, LSODA instead of DOP853.
     The rod starts at w = -w_start |w_stick| (w_start relative to the end of compression): its

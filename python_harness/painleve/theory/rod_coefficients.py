@@ -1,5 +1,6 @@
 """The rigid rod's coefficients (Hogan & Kristiansen, eq coeffs and eq Sw), the Painleve
-wedge (eqs mucrit, thetacrit), the quadrants of figure fig:GB, and the hypotheses of
+wedge (eqs mucrit, thetacrit), the quadrants of figure fig:GB, the fast eigenvalues of
+compressed contact (eq lambdapm: analytic's Theorem 1 and rigid_limit both start from them), and the hypotheses of
 Theorems 1 and 2 on them. Equation names in comments are the paper's ``\\eqlab`` labels.
 All functions broadcast over numpy arrays; scalar input gives float output."""
 import numpy as np
@@ -80,6 +81,22 @@ def S_phi(theta, *, alpha=ALPHA):
     alpha = rod_parameters(alpha, 0.0)[0]
     theta = floats(theta)
     return as_result(-alpha * np.cos(theta) / (1.0 + alpha * np.sin(theta) ** 2))  # eq Sw
+
+
+def lambda_of(p, delta):
+    """(lambda_+, lambda_-) for p < 0, unchecked; lambda_- = p/lambda_+ avoids cancellation."""
+    lp = -delta * p / 2 + np.sqrt(delta ** 2 * p ** 2 - 4 * p) / 2  # eq lambdapm
+    return lp, p / lp  # lambda_+ lambda_- = p (eq lambdapm2)
+
+
+def lambda_pm(theta0, delta, *, alpha=ALPHA, mu=MU):
+    """Fast eigenvalues (lambda_+, lambda_-) of compressed contact, eq lambdapm.
+
+    Requires p_+(theta0) < 0 (then lambda_- < 0 < lambda_+) and delta >= 0.
+    """
+    th, al, m = check_hypotheses("lambda_pm (eq lambdapm)", theta0, alpha, mu, delta=delta)
+    lp, lm = lambda_of(p_of(th, 1.0, al, m), floats(delta))
+    return as_result(lp), as_result(lm)
 
 
 def _wedge_text(alpha, mu):
