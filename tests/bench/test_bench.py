@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-from painleve import analytic as an
+from painleve.theory import analytic as an
 from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "bench"))

@@ -3,7 +3,7 @@ SUNDIALS CVODE, no Python in the loop) against the paper and against fmpy.
 
 - Theorem 1: w/v0 at the return to y = 0 is e(delta, theta0) + O(eps ln 1/eps);
   the bound 3 eps ln(1/eps) is the one test_second_importer.py uses.
-- fmpy's ME fast loop (painleve.experiment.Experiment) sets CVODE up the same way
+- fmpy's ME fast loop (painleve.fmu.experiment.Experiment) sets CVODE up the same way
   (BDF, Newton, dense, DQ Jacobian, abstol = rtol * nominal, max step horizon/50)
   with the same rtol, so the two differ by the solvers' global errors only: each
   controls its local error to rtol (relative) and rtol * nominal (absolute) over
@@ -23,11 +23,11 @@ import numpy as np
 import pytest
 from fmpy import extract
 
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 sys.path.insert(0, str(ROOT / "bench"))
 from native_driver import case_line, run_native  # noqa: E402
 

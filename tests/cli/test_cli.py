@@ -17,16 +17,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from painleve import analytic as an
-from painleve.sweepstore import ResultStore
+from painleve.theory import analytic as an
+from painleve.sweep.store import ResultStore
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 
 
 def painleve_command():
     """The installed console script beside this Python, else the module (same code)."""
     script = pathlib.Path(sys.executable).with_name("painleve")
-    return [str(script)] if script.exists() else [sys.executable, "-m", "painleve.cli"]
+    return [str(script)] if script.exists() else [sys.executable, "-m", "painleve"]
 
 
 def run(*args, check_rc=None, timeout=300, cwd=None):
@@ -73,9 +73,9 @@ def test_iwc_prints_the_simulated_outcome_beside_the_analytic_one(fmu_path):
 
 
 def test_iwc_with_a_nonlinear_compliance_law_compares_with_its_rigid_limit(fmu_path):
-    # --kappa, --beta reach the FMU, and the analytic column is the law's e (painleve.rigid_limit),
+    # --kappa, --beta reach the FMU, and the analytic column is the law's e (painleve.theory.rigid_limit),
     # which the simulated w approaches as for the linear law, not the linear e.
-    from painleve import rigid_limit
+    from painleve.theory import rigid_limit
     r = json.loads(run("iwc", "--fmu", fmu_path, "--theta0", 0.9, "--phi0", 0.5, "--eps", 1e-6, "--kappa", 2,
                        "--beta", 2, "--json", check_rc=0).stdout)
     e_law, e_linear = rigid_limit.e(1.0, 0.9, kappa=2.0, beta=2.0), an.e(1.0, 0.9)

@@ -9,17 +9,17 @@ import sys
 import numpy as np
 import pytest
 
-from painleve.ssp import start_values
-from painleve.ssp_check import check_ssp
+from painleve.coupling.ssp import start_values
+from painleve.coupling.ssp_check import check_ssp
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 ROD = ROOT / "build" / "PainleveRodSI.fmu"
 TABLE = ROOT / "build" / "ShakerTable.fmu"
 
 
 def painleve(*args, tmpdir=None):
     script = pathlib.Path(sys.executable).with_name("painleve")
-    cmd = [str(script)] if script.exists() else [sys.executable, "-m", "painleve.cli"]
+    cmd = [str(script)] if script.exists() else [sys.executable, "-m", "painleve"]
     env = None if tmpdir is None else dict(os.environ, TMPDIR=str(tmpdir))
     return subprocess.run(cmd + ["couple"] + [str(a) for a in args], capture_output=True, text=True, timeout=300,
                           env=env)

@@ -11,7 +11,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from conftest import leftovers
-from painleve.case import RANGES
+from painleve.experiments.case import RANGES
 from test_cli import one_line_error, run
 
 

@@ -15,11 +15,11 @@ import sys
 import pandas as pd
 import pytest
 
-from painleve import analytic as an
-from painleve.case import Case
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
 from test_cli import painleve_command
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 README = (ROOT / "README.md").read_text()
 PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, re.S)
 E11 = an.e_integrated(1.0, 1.0)         # e(delta = 1, theta0 = 1), the default case's, by integration

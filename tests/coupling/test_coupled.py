@@ -1,5 +1,5 @@
-"""PainleveRodSI on a ShakerTable, coupled through an SSP archive (painleve.coupled) and run by
-fmpy's SSP master and by libcosim and ecos (painleve.masters). Every assertion is a number the
+"""PainleveRodSI on a ShakerTable, coupled through an SSP archive (painleve.coupling.coupled) and run by
+fmpy's SSP master and by libcosim and ecos (painleve.coupling.masters). Every assertion is a number the
 physics or the master's scheme fixes, not one of the code's own outputs:
 
 - the scheme: all three masters are Jacobi with a zero-order hold (their sources; docs/coupling.md),
@@ -14,7 +14,7 @@ physics or the master's scheme fixes, not one of the code's own outputs:
 - a very heavy table (M = 1e6 kg, F0 = 0) is a fixed floor: the rod's IWC lifts off with
   w = e(delta, theta0) v0 (analytic.e, Theorem 1; the SI model's alpha, delta, theta0 and v0 in
   units of sqrt(g l)) within Theorem 1's O(eps ln 1/eps), as the rod alone on a fixed floor;
-- the archive is valid (painleve.ssp_check), and the other masters give fmpy's results to
+- the archive is valid (painleve.coupling.ssp_check), and the other masters give fmpy's results to
   within the communication step's own error.
 """
 import math
@@ -23,12 +23,12 @@ import fmpy
 import numpy as np
 import pytest
 
-from painleve import analytic as an
-from painleve import masters
-from painleve.coupled import (RECORD, Setup, impulse_on_rod, impulse_on_table, run_coupled,
+from painleve.theory import analytic as an
+from painleve.coupling import masters
+from painleve.coupling.coupled import (RECORD, Setup, impulse_on_rod, impulse_on_table, run_coupled,
                               table_momentum_impulse, write_coupled_ssp)
-from painleve.ssp import Component, Connection, write_ssp
-from painleve.ssp_check import check_ssp
+from painleve.coupling.ssp import Component, Connection, write_ssp
+from painleve.coupling.ssp_check import check_ssp
 
 STATES = ("rod.x", "rod.v", "rod.y", "rod.w", "rod.theta", "rod.phi", "table.position", "table.velocity")
 
@@ -77,7 +77,7 @@ def test_the_coupled_archive_is_valid(si_fmu_path, table_path, tmp_path):
 
 def test_the_bound_defaults_are_the_models_own_start_values(si_fmu_path, table_path):
     """The archive binds every default explicitly: they must be the model descriptions' starts."""
-    from painleve.coupled import ROD_DEFAULTS, TABLE_DEFAULTS
+    from painleve.coupling.coupled import ROD_DEFAULTS, TABLE_DEFAULTS
     for fmu, defaults in ((si_fmu_path, ROD_DEFAULTS), (table_path, TABLE_DEFAULTS)):
         start = {v.name: v.start for v in fmpy.read_model_description(fmu).modelVariables}
         for name, value in defaults.items():
@@ -190,7 +190,7 @@ def test_on_a_very_heavy_table_the_rod_lifts_off_with_w_equal_to_e_v0(master, si
     assert abs(w / d["v0"] - e) < 3 * eps * math.log(1 / eps), (w / d["v0"], e)
     # the table took the rod's impulse (< m v = 2 N s) with M = 1e6 kg: below 2e-6 m/s
     assert np.max(np.abs(r["table.velocity"])) < 2e-6
-    # the harness's scaling (painleve.si.case_of, used by painleve couple) gives the same numbers
+    # the harness's scaling (painleve.coupling.si.case_of, used by painleve couple) gives the same numbers
     case = HEAVY.case()
     assert (case.alpha, case.epsilon, case.delta, case.theta0, case.v0, case.phi0) == pytest.approx(
         (d["alpha"], d["epsilon"], d["delta"], d["theta0"], d["v0"], d["phi0"]), rel=1e-12)

@@ -33,7 +33,7 @@ _P = POINTER(c_double)
 @pytest.fixture(scope="module")
 def table(table_path):
     """The FMU extracted once by the harness; raw fmpy instances from .instantiate."""
-    from painleve.experiment import Experiment
+    from painleve.fmu.experiment import Experiment
     with Experiment(table_path) as experiment:
         yield experiment
 
@@ -137,9 +137,8 @@ def test_the_documentation_lists_every_variable_with_its_unit_in_si(table_path):
 def test_a_tool_builds_the_source_fmu_from_its_source_files(table_path, tmp_path, fmi_type):
     """<SourceFiles> and sources/ are complete: fmpy compiles them (with the README's CVODE
     options) into a binary that simulates like the CMake build."""
-    from test_source_fmu import source_build, sundials_libraries
-    options = {"CMAKE_C_FLAGS": "-DHAVE_CVODE", "CMAKE_C_STANDARD_LIBRARIES": " ".join(sundials_libraries() + ["-lm"])}
-    unzipped = source_build(table_path, tmp_path, options)
+    from helpers.source_build import source_build, with_cvode
+    unzipped = source_build(table_path, tmp_path, with_cvode())
     a, b = (simulate_fmu(f, fmi_type=fmi_type, start_values=dict(F_N=30.0), output=["position", "velocity"])
             for f in (table_path, unzipped))
     for name in ("position", "velocity"):

@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from painleve import si
-from painleve.si_experiment import SIExperiment
-from si_fmu import contact_impulses, energy, input_work, on_grid
+from painleve.coupling import si
+from painleve.coupling.si_experiment import SIExperiment
+from helpers.si_fmu import contact_impulses, energy, input_work, on_grid
 
 RTOL = 1e-10
 FMI_TYPES = ["ModelExchange", "CoSimulation"]

@@ -1,4 +1,4 @@
-"""The harness's SI loop (painleve.si_experiment) against fmpy's own: with constant inputs its
+"""The harness's SI loop (painleve.coupling.si_experiment) against fmpy's own: with constant inputs its
 Model Exchange loop is fmpy's simulate_fmu, and a belt switched on (an input that jumps) is
 handed over at its instant in both interfaces, the same way."""
 import math
@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from fmpy import simulate_fmu
 
-from painleve import si
-from painleve.si_experiment import OUTPUTS, SIExperiment
-from si_fmu import on_grid
+from painleve.coupling import si
+from painleve.coupling.si_experiment import OUTPUTS, SIExperiment
+from helpers.si_fmu import on_grid
 
 ROD = si.SIRod(k=2e5, c=45.0, mu=0.6)
 STATE = si.SIState(x=0.1, v=1.0, y=0.03, w=-0.5, theta=0.8, phi=-3.0)   # dropped: bounces, slips, sticks

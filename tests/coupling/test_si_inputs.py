@@ -6,7 +6,7 @@ import math
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from painleve.si_experiment import INPUTS, SIExperiment
+from painleve.coupling.si_experiment import INPUTS, SIExperiment
 
 FMI2_ERROR = 3
 

@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from fmpy import simulate_fmu
 
-from painleve import acceptance
-from painleve import analytic as an
-from painleve import si
-from painleve.case import Case, horizon
-from painleve.experiment import Experiment
-from painleve.si_experiment import SIExperiment
-from si_fmu import on_grid
+from painleve.experiments import acceptance
+from painleve.theory import analytic as an
+from painleve.coupling import si
+from painleve.experiments.case import Case, horizon
+from painleve.fmu.experiment import Experiment
+from painleve.coupling.si_experiment import SIExperiment
+from helpers.si_fmu import on_grid
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
 COMPARED = STATES + ["F_N", "F_T", "energy", "mode", "contact"]

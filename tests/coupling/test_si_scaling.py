@@ -1,4 +1,4 @@
-"""painleve.si: the SI rod's parameters and starts in the paper's units and back
+"""painleve.coupling.si: the SI rod's parameters and starts in the paper's units and back
 (docs/si_model.md §5, §7), checked against numbers worked by hand from the definitions
 alpha = m l^2/J, epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k), T = sqrt(l/g)."""
 import math
@@ -7,9 +7,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from painleve import analytic as an
-from painleve import si
-from painleve.case import Case
+from painleve.theory import analytic as an
+from painleve.coupling import si
+from painleve.experiments.case import Case
 
 
 def test_the_default_rod_is_a_uniform_rod_in_the_papers_regime():

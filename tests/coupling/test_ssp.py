@@ -1,6 +1,6 @@
-"""The SSP archive generator (painleve.ssp), its validation (painleve.ssp_check: fmpy's schema
+"""The SSP archive generator (painleve.coupling.ssp), its validation (painleve.coupling.ssp_check: fmpy's schema
 check, fmpy's FMU validation and the cross-checks fmpy leaves out) and the three masters that
-run it (painleve.masters), on two PainleveRod instances (no inputs: nothing is connected).
+run it (painleve.coupling.masters), on two PainleveRod instances (no inputs: nothing is connected).
 Each master must give each rod what fmpy's Co-Simulation of that rod alone gives, to the
 FMU's solver tolerance, with the start value bound in the archive reaching its rod only."""
 import zipfile
@@ -9,9 +9,9 @@ import fmpy
 import numpy as np
 import pytest
 
-from painleve import masters
-from painleve.ssp import SSD_NAME, Component, Connection, start_values, write_ssp
-from painleve.ssp_check import check_ssp
+from painleve.coupling import masters
+from painleve.coupling.ssp import SSD_NAME, Component, Connection, start_values, write_ssp
+from painleve.coupling.ssp_check import check_ssp
 
 RTOL = 1e-6             # the FMU's CVODE tolerance in its default experiment
 STEP, STOP = 2e-4, 0.1  # its default grid

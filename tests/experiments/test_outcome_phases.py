@@ -1,14 +1,14 @@
-"""The one definition of an IWC's phases (painleve.outcome.phases), on switch lists whose
+"""The one definition of an IWC's phases (painleve.experiments.outcome.phases), on switch lists whose
 durations follow from the definition by hand, and the same phases read off the FMU and
 off the independent scipy reference."""
 import math
 
 import pytest
 
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.outcome import SLIP_BACKWARD, SLIP_FORWARD, STICK, phases
-from painleve.reference import run_reference
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.outcome import SLIP_BACKWARD, SLIP_FORWARD, STICK, phases
+from painleve.experiments.reference import run_reference
 
 
 def test_compression_stick_lift_off_flight_back_by_the_definition():

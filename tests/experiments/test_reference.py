@@ -1,4 +1,4 @@
-"""The solve_ivp reference (painleve.reference) against the paper and against the FMU.
+"""The solve_ivp reference (painleve.experiments.reference) against the paper and against the FMU.
 
 Two independent implementations of docs/model.md (sticking by the exact Filippov
 field, which docs/model.md §1 states to leading order) must agree to within their solvers'
@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 import scipy.optimize
 
-import rod_sim
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.reference import (FLIGHT, METHODS, SLIP_BACKWARD, SLIP_FORWARD, STICK, ReferenceSimulationError,
+from helpers import rod_sim
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.reference import (FLIGHT, METHODS, SLIP_BACKWARD, SLIP_FORWARD, STICK, ReferenceSimulationError,
                                 Rod, default_rtol, run_reference, simulate)
 
 # Each solver keeps its local error per step below rtol (times the state's scale),

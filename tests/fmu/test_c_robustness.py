@@ -32,7 +32,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 C_TESTS = ROOT / "tests" / "c"
 CORPUS = C_TESTS / "corpus"
 FUZZ_SECONDS = int(os.environ.get("FUZZ_SECONDS", "45"))

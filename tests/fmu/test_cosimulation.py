@@ -12,12 +12,12 @@ from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.studies import convergence
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.studies import convergence
 from conftest import ROOT
-from raw_instances import Rod, Slave
+from helpers.raw_instances import Rod, Slave
 
 def test_both_interfaces_declared_and_valid(fmu_path):
     md = read_model_description(fmu_path)

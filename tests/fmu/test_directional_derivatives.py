@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from raw_instances import Rod, _P
+from helpers.raw_instances import Rod, _P
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
 PARAMETERS = ["alpha", "mu", "delta", "epsilon", "kappa", "beta"]

@@ -13,7 +13,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
-from painleve import analytic as an
+from painleve.theory import analytic as an
 
 OUTPUTS = ["x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact", "switches"]
 # Theorem 1 (inconsistent quadrant) and Theorem 2 (indeterminate) starts on the floor, v0 = 1.
@@ -201,7 +201,7 @@ def test_painleve_validate_passes_on_fmi3_with_the_fmi2_fmus_numbers(fmu_path, f
     # check passes, and what each measures agrees with the FMI 2.0 FMU's to the solver tolerance
     # (Co-Simulation to round-off: the same integrator and steps; Model Exchange through
     # simulate_fmu for FMI 3.0, through the fast loop for FMI 2.0, both at rtol <= eps/100).
-    from painleve.validate import validate
+    from painleve.validation.suite import validate
     by3, by2 = validate(fmu3_path, sample=6), validate(fmu_path, sample=6)
     assert [c.id for c in by3] == [c.id for c in by2] and all(c.passed for c in by3), \
         [c.measured for c in by3 if not c.passed]

@@ -5,9 +5,9 @@ from ctypes import POINTER, c_double
 import numpy as np
 import pytest
 
-from raw_instances import Rod
-from painleve import analytic as an
-from rod_sim import energy_gradient, event_count, mode_changes, phases, rod_energy, simulate
+from helpers.raw_instances import Rod
+from painleve.theory import analytic as an
+from helpers.rod_sim import energy_gradient, event_count, mode_changes, phases, rod_energy, simulate
 
 
 def test_free_flight_matches_closed_form(fmu_path):

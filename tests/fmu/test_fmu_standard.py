@@ -11,8 +11,8 @@ from fmpy.build import build_platform_binary
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from raw_instances import Rod
-from rod_sim import OUTPUTS, phases
+from helpers.raw_instances import Rod
+from helpers.rod_sim import OUTPUTS, phases
 
 FMI2_ERROR = 3
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from raw_instances import Rod
+from helpers.raw_instances import Rod
 
 _P = POINTER(c_double)
 
@@ -102,7 +102,7 @@ def test_bad_bytes_are_refused_with_a_message(loaded, how, words):
 
 
 def test_cosimulation_state_restores_identically(loaded):
-    from raw_instances import Slave
+    from helpers.raw_instances import Slave
     rod = Slave(loaded, epsilon=1e-4)
     rod.step(2.5e-4)                      # inside the IWC
     state = rod.fmu.getFMUstate()

@@ -1,17 +1,17 @@
-"""The Model Exchange fast loop (painleve.me_fast_loop: fmpy's CVode from event to event)
+"""The Model Exchange fast loop (painleve.fmu.me_fast_loop: fmpy's CVode from event to event)
 against fmpy's own simulate_fmu, its handling of an FMU that refuses a call, and the
-fmpy internals it stands on (painleve.fmpy_internals), which an fmpy update may move."""
+fmpy internals it stands on (painleve.fmu.fmpy_internals), which an fmpy update may move."""
 import ctypes
 
 import numpy as np
 import pytest
 
-from painleve import analytic as an
-from painleve import fmpy_internals
-from painleve.case import Case
-from painleve.experiment import STATES, Experiment
-from painleve.me_fast_loop import DirectCVode, event_iteration
-from painleve.outcome import SimulationError, outcome_of_trajectory
+from painleve.theory import analytic as an
+from painleve.fmu import fmpy_internals
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import STATES, Experiment
+from painleve.fmu.me_fast_loop import DirectCVode, event_iteration
+from painleve.experiments.outcome import SimulationError, outcome_of_trajectory
 
 VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0)
 

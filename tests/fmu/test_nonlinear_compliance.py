@@ -2,7 +2,7 @@
 d = max(-y/eps, 0), kappa a stiffening spring, beta a damping growing with penetration.
 
 - Theorem 1 on the FMU converges, as eps -> 0, to the rigid limit computed for that law
-  (painleve.rigid_limit), not to the paper's linear e.
+  (painleve.theory.rigid_limit), not to the paper's linear e.
 - Energy with the nonlinear spring's potential: conserved without damping and friction,
   never increasing with them.
 - Laws that make h increase with y or w are refused, naming the parameter.
@@ -14,14 +14,14 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from painleve import analytic as an
-from painleve import rigid_limit as rl
-from painleve.acceptance import power_rate
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.studies import convergence, separatrix
-from raw_instances import Rod
-from rod_sim import simulate
+from painleve.theory import analytic as an
+from painleve.theory import rigid_limit as rl
+from painleve.experiments.acceptance import power_rate
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.studies import convergence, separatrix
+from helpers.raw_instances import Rod
+from helpers.rod_sim import simulate
 
 
 @dataclass(frozen=True)
@@ -198,7 +198,7 @@ def test_the_harness_predicts_the_laws_rigid_limit(law):
 
 def test_painleve_validate_checks_the_theorems_with_a_nonlinear_law(fmu_path):
     # Every theorem case with the law, e from the rigid limit (computed here again), all passing.
-    from painleve.validate import validate
+    from painleve.validation.suite import validate
     law = dict(kappa=2.0, beta=1.0)
     checks = validate(fmu_path, interfaces=["ME"], sample=2, law=law)
     assert all(c.passed for c in checks), [c.measured for c in checks if not c.passed]
@@ -213,7 +213,7 @@ def test_painleve_validate_checks_the_theorems_with_a_nonlinear_law(fmu_path):
 def test_the_figure_of_e_against_the_law_puts_the_fmu_on_the_rigid_limit(fmu_path):
     # painleve figures' eLaw: w/v0 of the FMU at eps = 1e-6 on the rigid limit's curve, which leaves
     # the linear e as kappa (up) or beta (down) grows.
-    from painleve.figures import elaw_data
+    from painleve.figures.paper import elaw_data
     with Experiment(fmu_path) as experiment:
         d = elaw_data(experiment)
     for q in d["points"]:

@@ -11,29 +11,13 @@ from xml.etree import ElementTree
 import fmpy
 import numpy as np
 import pytest
-from fmpy.build import build_platform_binary
 
 from conftest import ROOT
+from helpers.source_build import source_build, sundials_libraries, with_cvode
 
 FMU_SRC = ROOT / "fmu_src"
 FMI_HEADERS = pathlib.Path(fmpy.__file__).parent / "c-code"
 OUTPUTS = ["x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact"]
-
-
-def sundials_libraries():
-    """The static SUNDIALS libraries the project's build found (build/CMakeCache.txt)."""
-    cache = (ROOT / "build" / "CMakeCache.txt").read_text()
-    libraries = re.findall(r"^SUNDIALS_\w+:FILEPATH=(\S+\.a)$", cache, re.M)
-    assert libraries, "the build found no SUNDIALS: `bash run.sh test` installs libsundials-dev"
-    return libraries
-
-
-def source_build(fmu_path, where, cmake_options=None):
-    unzipped = fmpy.extract(fmu_path, where / "fmu")
-    shutil.rmtree(where / "fmu" / "binaries")
-    (where / "build").mkdir()
-    build_platform_binary(unzipped, build_dir=where / "build", cmake_options=cmake_options)
-    return unzipped
 
 
 def default_experiment(fmu, fmi_type):
@@ -52,9 +36,7 @@ def test_source_files_are_every_source_for_both_interfaces(fmu_path):
 
 @pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
 def test_fmpy_compile_with_cvode_matches_the_cmake_build(fmu_path, tmp_path, fmi_type):
-    # The README's defines and libraries for a tool that builds from <SourceFiles>.
-    options = {"CMAKE_C_FLAGS": "-DHAVE_CVODE", "CMAKE_C_STANDARD_LIBRARIES": " ".join(sundials_libraries() + ["-lm"])}
-    unzipped = source_build(fmu_path, tmp_path, options)
+    unzipped = source_build(fmu_path, tmp_path, with_cvode())
     a, b = default_experiment(fmu_path, fmi_type), default_experiment(unzipped, fmi_type)
     assert b["w"][-1] > 0 and b["contact"].any()
     for name in ("y", "w", "v", "phi", "energy"):

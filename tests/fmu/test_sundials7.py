@@ -10,11 +10,11 @@ import sys
 import fmpy
 import pytest
 
-from painleve import analytic as an
-from painleve import acceptance
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.studies import convergence
+from painleve.theory import analytic as an
+from painleve.experiments import acceptance
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.studies import convergence
 from conftest import ROOT
 from test_theorems_on_fmu import THEOREM1_CASES, THEOREM1_DELTAS, assert_theorem1_converges
 
@@ -107,7 +107,7 @@ def test_the_native_driver_builds_and_runs_on_sundials_7(build7, fmu7):
 CVODE_FAILURE = """
 import sys
 from fmpy.fmi1 import FMICallException
-from painleve.experiment import Experiment
+from painleve.fmu.experiment import Experiment
 messages = []
 with Experiment(sys.argv[1], fmi_type="CoSimulation") as experiment:   # removes its extracted copy
     fmu = experiment.instantiate(on_message=lambda *m: messages.append(m))

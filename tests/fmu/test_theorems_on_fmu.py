@@ -5,12 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from painleve import acceptance
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment, run_iwc
-from painleve.outcome import SimulationError
-from painleve.studies import convergence, separatrix
+from painleve.experiments import acceptance
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment, run_iwc
+from painleve.experiments.outcome import SimulationError
+from painleve.experiments.studies import convergence, separatrix
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ import subprocess
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 FMI_SIM = ROOT / ".tools" / "bin" / "fmi-sim"
 INTERFACES = {"ME": "model-exchange", "CS": "co-simulation"}
 

@@ -23,7 +23,7 @@ import tempfile
 import fmpy
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT  # noqa: E402
 JVM = ROOT / "tests" / "importers" / "jvm" / "target"
 REALS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy")
 FIELDS = ("time",) + REALS + ("mode", "contact")

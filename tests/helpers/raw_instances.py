@@ -67,7 +67,7 @@ class Slave:
     """One Co-Simulation instance, initialized with the start values given, with its log messages."""
 
     def __init__(self, loaded, tolerance=None, **start):
-        from painleve.experiment import STATES
+        from painleve.fmu.experiment import STATES
         self.vr, self._states = loaded.vr, list(STATES)
         self.messages = []
         self.fmu = loaded.instantiate(fmi_type="CoSimulation", on_message=lambda *m: self.messages.append(m))

@@ -1,7 +1,7 @@
 """Drives the FMU through the harness for the tests, and reads trajectories the way a physicist would."""
 import numpy as np
 
-from painleve.experiment import Experiment
+from painleve.fmu.experiment import Experiment
 
 OUTPUTS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact")
 

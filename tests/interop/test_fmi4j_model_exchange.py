@@ -16,12 +16,12 @@ import fmpy
 import numpy as np
 import pytest
 
-from other_importers import FIELDS, run_fmi4j_euler
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.outcome import outcome_of_trajectory as outcome_of
-from rod_sim import OUTPUTS, phases, rod_energy
+from helpers.other_importers import FIELDS, run_fmi4j_euler
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.outcome import outcome_of_trajectory as outcome_of
+from helpers.rod_sim import OUTPUTS, phases, rod_energy
 
 DEFAULT = Case()
 STEPS_PER_EPSILON = 100

@@ -17,11 +17,11 @@ import fmpy
 import numpy as np
 import pytest
 
-from painleve import analytic as an
-from painleve.case import Case
-from painleve.experiment import Experiment
-from painleve.outcome import outcome_of_trajectory
-from fmi_sim import run_fmi_sim
+from painleve.theory import analytic as an
+from painleve.experiments.case import Case
+from painleve.fmu.experiment import Experiment
+from painleve.experiments.outcome import outcome_of_trajectory
+from helpers.fmi_sim import run_fmi_sim
 
 DEFAULT = Case()                                 # the modelDescription's start values
 OTHER = Case(epsilon=1e-4, delta=0.5, theta0=1.1)

@@ -1,4 +1,4 @@
-"""Tests of painleve.analytic against the paper's laws and independent computations.
+"""Tests of painleve.theory.analytic against the paper's laws and independent computations.
 
 Expected values are recomputed here from the paper's definitions (eq coeffs,
 eq lambdapm, eq initStick, ...) or are laws (identities, orders of
@@ -13,7 +13,7 @@ import scipy.integrate
 import scipy.linalg
 import scipy.optimize
 
-from painleve import analytic as A
+from painleve.theory import analytic as A
 
 CASES = [(3.0, 3.0), (3.0, 1.4), (2.0, 3.0)]  # (alpha, mu) with a Painleve wedge
 

@@ -1,11 +1,11 @@
-"""The rigid limit of IWC for a nonlinear compliance law (painleve.rigid_limit, issue #16),
+"""The rigid limit of IWC for a nonlinear compliance law (painleve.theory.rigid_limit, issue #16),
 against the paper's closed forms for the linear law, an energy argument for the
 undamped law, the scaling of the law, and a second, independent integration."""
 import numpy as np
 import pytest
 
-from painleve import analytic as an
-from painleve import rigid_limit as rl
+from painleve.theory import analytic as an
+from painleve.theory import rigid_limit as rl
 
 WEDGES = [dict(alpha=3.0, mu=3.0), dict(alpha=3.0, mu=1.4), dict(alpha=2.0, mu=3.0)]
 

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import analytic as an
-from .case import Case
-from .rod_coefficients import check_hypotheses
+from ..experiments.case import Case
+from ..theory import analytic as an
+from ..theory.rod_coefficients import check_hypotheses
 
 G = 9.81   # the FMU's default gravity [m/s2]
 

@@ -26,12 +26,12 @@ import numpy as np
 from fmpy import simulate_fmu
 from fmpy.sundials import CVodeSolver
 
+from ..experiments.case import horizon
+from ..experiments.outcome import outcome_of_trajectory
+from ..fmu.experiment import Experiment
+from ..fmu.fmpy_internals import cvode_set_stop_time
+from ..fmu.me_fast_loop import event_iteration
 from . import si
-from .case import horizon
-from .experiment import Experiment
-from .fmpy_internals import cvode_set_stop_time
-from .me_fast_loop import event_iteration
-from .outcome import outcome_of_trajectory
 
 # The SI FMU a pip install of the package carries beside PainleveRod.fmu.
 BUNDLED_SI_FMU = importlib.resources.files("painleve").joinpath("PainleveRodSI.fmu")

@@ -82,7 +82,7 @@ def convergence_failures(epsilons, errors, *, tolerance=ERROR_AT_SMALLEST_EPS):
 def theorem1_failures(outcomes):
     """Theorem 1 (or 2 below w1*) on one case at decreasing eps: IWC at every eps, and the
     errors of w/v0 (relative to e) and of phi (relative to its jump) converge."""
-    from .analytic import predict
+    from ..theory.analytic import predict
     predicted = predict(outcomes[0].case)
     epsilons = [o.case.epsilon for o in outcomes]
     failures = [] if all(o.iwc for o in outcomes) else ["no IWC at some eps"]

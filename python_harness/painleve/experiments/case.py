@@ -3,7 +3,7 @@ floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
 import math
 from dataclasses import dataclass
 
-from .analytic import check_case, predict
+from ..theory.analytic import check_case, predict
 
 # The parameters' ranges, the FMU's own (fmu_src/config.h, the min/max of modelDescription.xml;
 # tests/test_cli.py checks they agree): the CLI and sweeps refuse a value outside them before

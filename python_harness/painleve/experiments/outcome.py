@@ -24,7 +24,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from . import analytic as an
+from ..theory import analytic as an
 
 SLIP_FORWARD, STICK, SLIP_BACKWARD = 1, 0, -1     # the FMU's `mode`
 STATE_AT_RETURN = ("v", "y", "w", "theta", "phi")    # what a run reads at the return to the floor

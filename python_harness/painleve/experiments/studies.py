@@ -4,8 +4,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..theory.analytic import predict
 from .acceptance import power_rate
-from .analytic import predict
 
 
 @dataclass(frozen=True)

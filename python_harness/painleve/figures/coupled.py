@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .coupled import ROD, TABLE
+from ..coupling.coupled import ROD, TABLE
 
 
 def coupled_figure(r, path, *, setup, title="", dpi=150):

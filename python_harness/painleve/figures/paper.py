@@ -16,11 +16,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import analytic as an
-from .case import Case
-from .experiment import Experiment
-from .outcome import outcome_of_trajectory
-from .report import to_json
+from ..experiments.case import Case
+from ..experiments.outcome import outcome_of_trajectory
+from ..experiments.strict_json import to_json
+from ..fmu.experiment import Experiment
+from ..theory import analytic as an
 
 FIGURES = ("GB", "eDelta0", "video", "eLaw")
 

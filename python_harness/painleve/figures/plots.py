@@ -8,7 +8,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import analytic as an  # noqa: E402
+from ..theory import analytic as an  # noqa: E402
 
 QUADRANT_STYLE = {   # marker, colour
     "indeterminate": ("^", "tab:purple"),
@@ -178,7 +178,7 @@ def plot_video(d, path, *, dpi=150):
 def plot_elaw(d, path, *, dpi=150):
     """e(delta, theta0) against the compliance law's kappa (a) and beta (b): the rigid limit
     (painleve.rigid_limit) as curves, the FMU's w/v0 at small eps as points."""
-    from . import rigid_limit
+    from ..theory import rigid_limit
     p = d["params"]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     for ax, parameter, what in zip(axes, ("kappa", "beta"), ("(a) a stiffening spring", "(b) damping that grows "

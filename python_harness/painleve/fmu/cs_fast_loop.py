@@ -7,8 +7,8 @@ last stick and contact began and ended), so the master steps STEP_IN_EPSILONS *
 eps at a time and reads them only at the end of each step, until the rod has
 left the floor; the return to y = 0 is then the closed-form free flight run back
 from the first point after it (outcome.flight_back_to_floor)."""
-from .outcome import (SLIP_BACKWARD, STATE_AT_RETURN, STICK, flight_back_to_floor, no_return,
-                      outcome_from_switches)
+from ..experiments.outcome import (SLIP_BACKWARD, STATE_AT_RETURN, STICK, flight_back_to_floor, no_return,
+                                   outcome_from_switches)
 
 # The communication step in eps: well inside the flight after the return (O(1) long).
 STEP_IN_EPSILONS = 4

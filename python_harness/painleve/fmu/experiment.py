@@ -35,11 +35,11 @@ from fmpy import calloc, extract, free, read_model_description, simulate_fmu
 from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
+from ..experiments.case import Case, horizon
+from ..experiments.outcome import SimulationError, outcome_of_trajectory
 from . import fmi3_adapter
-from .case import Case, horizon
 from .cs_fast_loop import run_co_simulation
 from .me_fast_loop import run_model_exchange
-from .outcome import SimulationError, outcome_of_trajectory
 
 # The FMU a pip install of the package carries (CMake builds it into the wheel). Through the
 # package's resources, so that an editable install (its FMU in site-packages, its code here) finds it.

@@ -12,8 +12,8 @@ from ctypes import byref, c_long
 
 from fmpy.sundials import CVodeSolver
 
+from ..experiments.outcome import STATE_AT_RETURN, no_return, outcome_from_switches
 from .fmpy_internals import c_functions, cvode_get_num_steps, vector_data
-from .outcome import STATE_AT_RETURN, no_return, outcome_from_switches
 
 
 class _NoInput:

@@ -23,10 +23,10 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from . import analytic as an
-from .experiment import Experiment
-from .outcome import SimulationError
-from .sweepstore import ResultStore, as_frame
+from ..experiments.outcome import SimulationError
+from ..fmu.experiment import Experiment
+from ..theory import analytic as an
+from .store import ResultStore, as_frame
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
-from .case import RANGES, Case
+from ..experiments.case import RANGES, Case
 
 PARAMS = ("theta0", "phi0", "delta", "epsilon", "v0", "w10", "alpha", "mu", "kappa", "beta")
 DEFAULTS = {f.name: f.default for f in fields(Case)}

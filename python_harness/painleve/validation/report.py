@@ -1,7 +1,5 @@
 """The lines of a validation report (`Check`) and how they are shown: a
 terminal table, a Markdown report, and one line naming what failed."""
-import json
-import math
 from dataclasses import asdict, dataclass, field
 
 
@@ -64,19 +62,3 @@ def markdown(checks, *, fmu_path, sha256, seconds):
         lines.append(f"| {'PASS' if c.passed else '**FAIL**'} | `{c.id}` | {cell(c.what)} | {cell(c.measured)} | "
                      f"{cell(c.limit)} |")
     return "\n".join(lines) + "\n"
-
-
-def to_json(obj, **kw):
-    """Strict JSON of results: numpy scalars as numbers, NaN and infinities (a prediction
-    that does not apply) as null."""
-    def clean(x):
-        if isinstance(x, dict):
-            return {str(k): clean(v) for k, v in x.items()}
-        if isinstance(x, (list, tuple)):
-            return [clean(v) for v in x]
-        if hasattr(x, "item") and hasattr(x, "dtype"):
-            x = x.item()
-        if isinstance(x, float) and not math.isfinite(x):
-            return None
-        return x
-    return json.dumps(clean(obj), allow_nan=False, **kw)

@@ -76,6 +76,7 @@ def default_experiment_check(fmu_path, interface):
     """The FMU opened with its defaults, as any tool would, must show an IWC:
     touch, stick, and leave the floor moving up before the stop time."""
     import tempfile
+
     from fmpy import extract, simulate_fmu
     cid = f"default/{interface}"
     what = f"default experiment through {'Model Exchange' if interface == 'ME' else 'Co-Simulation'} shows an IWC"

@@ -19,14 +19,14 @@ from dataclasses import asdict, replace
 
 import numpy as np
 
-from . import acceptance
-from . import analytic as an
-from .case import Case
-from .experiment import FMI_TYPES, Experiment
-from .outcome import SimulationError
+from ..experiments import acceptance
+from ..experiments.case import Case
+from ..experiments.outcome import SimulationError
+from ..experiments.studies import separatrix
+from ..fmu.experiment import FMI_TYPES, Experiment
+from ..theory import analytic as an
 from .report import Check
-from .studies import separatrix
-from .validate_static import default_experiment_check, static_checks
+from .static import default_experiment_check, static_checks
 
 EPSILONS = (1e-4, 1e-5, 1e-6)
 
