@@ -14,7 +14,6 @@ SUNDIALS CVODE, no Python in the loop) against the paper and against fmpy.
   iteration matrix, so the result moves within the same tolerance (measured: 2 rtol).
 """
 import math
-import pathlib
 import shutil
 import subprocess
 import sys
@@ -26,8 +25,8 @@ from fmpy import extract
 from painleve.theory import analytic as an
 from painleve.experiments.case import Case
 from painleve.fmu.experiment import Experiment
+from conftest import ROOT
 
-from conftest import ROOT  # noqa: E402
 sys.path.insert(0, str(ROOT / "bench"))
 from native_driver import case_line, run_native  # noqa: E402
 

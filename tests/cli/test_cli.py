@@ -19,8 +19,7 @@ import pytest
 
 from painleve.theory import analytic as an
 from painleve.sweep.store import ResultStore
-
-from conftest import ROOT  # noqa: E402
+from conftest import ROOT
 
 
 def painleve_command():

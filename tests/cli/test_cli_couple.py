@@ -11,8 +11,8 @@ import pytest
 
 from painleve.coupling.ssp import start_values
 from painleve.coupling.ssp_check import check_ssp
+from conftest import ROOT
 
-from conftest import ROOT  # noqa: E402
 ROD = ROOT / "build" / "PainleveRodSI.fmu"
 TABLE = ROOT / "build" / "ShakerTable.fmu"
 

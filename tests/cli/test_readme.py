@@ -3,10 +3,9 @@ their comments say (issue #18): the Python blocks of the quick start, whose prin
 checked against the paper's e (computed here by integrating the sticking system) and against
 the comments beside them, and the block of `painleve` commands, run verbatim in a fresh
 directory that has the build. (The set-up blocks, `bash run.sh ...` and `pip install ...`, are
-what CI itself runs and what tests/test_pip_install.py runs.)"""
+what CI itself runs and what tests/package/test_pip_install.py runs.)"""
 import json
 import math
-import pathlib
 import re
 import shlex
 import subprocess
@@ -18,8 +17,8 @@ import pytest
 from painleve.theory import analytic as an
 from painleve.experiments.case import Case
 from test_cli import painleve_command
+from conftest import ROOT
 
-from conftest import ROOT  # noqa: E402
 README = (ROOT / "README.md").read_text()
 PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, re.S)
 E11 = an.e_integrated(1.0, 1.0)         # e(delta = 1, theta0 = 1), the default case's, by integration

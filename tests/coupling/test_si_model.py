@@ -78,7 +78,7 @@ WIDE, THIN = dict(alpha=3.0, mu=3.0, theta0=1.0), dict(alpha=3.0, mu=1.4, theta0
 @pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
 @pytest.mark.parametrize("params, delta", [(WIDE, 0.5), (WIDE, 2.0), (THIN, 1.0)])
 def test_the_si_model_passes_theorem1(si_fmu_path, params, delta, fmi_type):
-    # the rule of tests/test_theorems_on_fmu.py: IWC, w -> e v0 and phi -> its jump, within 1% at the
+    # the rule of tests/fmu/test_theorems_on_fmu.py: IWC, w -> e v0 and phi -> its jump, within 1% at the
     # smallest eps and falling with eps; here on a 2 kg, 0.8 m rod on a raised belt running backwards
     # (the states are absolute: at eps = 1e-6 the gap, 4e-13 m, is 1e-11 of the floor's height)
     epsilons = acceptance.in_regime([1e-4, 1e-5, 1e-6], delta)

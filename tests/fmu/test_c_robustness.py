@@ -32,7 +32,8 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from conftest import ROOT  # noqa: E402
+from conftest import ROOT
+
 C_TESTS = ROOT / "tests" / "c"
 CORPUS = C_TESTS / "corpus"
 FUZZ_SECONDS = int(os.environ.get("FUZZ_SECONDS", "45"))

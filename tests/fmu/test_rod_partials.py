@@ -2,13 +2,13 @@
 functions it differentiates, at random points in every mode: tests/c/rod_partials_check.c,
 compiled here with the FMU's warnings as errors and under AddressSanitizer + UBSan."""
 import os
-import pathlib
 import shutil
 import subprocess
 
 import pytest
 
-from conftest import ROOT  # noqa: E402
+from conftest import ROOT
+
 FMU_SRC = ROOT / "fmu_src"
 WARNINGS = ["-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion", "-Wno-sign-conversion", "-Werror"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all"]

@@ -3,7 +3,6 @@ fmpy's own build of it (with and without CVODE), and the sources linked statical
 twice into one program under two FMI2_FUNCTION_PREFIXes."""
 import pathlib
 import re
-import shutil
 import subprocess
 import zipfile
 from xml.etree import ElementTree

@@ -45,7 +45,7 @@ def test_theorem1_errors_shrink_as_eps_decreases(experiment, params, epsilons, d
 
 
 def assert_theorem1_converges(study):
-    """Theorem 1's acceptance (also for the SUNDIALS 7 build, tests/test_sundials7.py)."""
+    """Theorem 1's acceptance (also for the SUNDIALS 7 build, tests/fmu/test_sundials7.py)."""
     # validate's rule (acceptance.py): IWC, w and phi within 1% at the smallest eps, falling with eps
     assert not acceptance.theorem1_failures(study.outcomes), study.table()
     # and v (tangential velocity at the return, predicted 0) falls too: about eps ln(1/eps), faster when

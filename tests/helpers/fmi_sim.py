@@ -5,12 +5,12 @@ with the step equal to the output interval (stop/500 unless given), events found
 by the indicators' signs at step ends; its Co-Simulation calls fmi2DoStep once per
 output interval, so the FMU's own CVODE does the integrating.
 """
-import pathlib
 import subprocess
 
 import numpy as np
 
-from conftest import ROOT  # noqa: E402
+from conftest import ROOT
+
 FMI_SIM = ROOT / ".tools" / "bin" / "fmi-sim"
 INTERFACES = {"ME": "model-exchange", "CS": "co-simulation"}
 

@@ -16,14 +16,14 @@ fmpy's field names: time, the states, F_N, F_T, energy, mode, contact, one row p
 communication point (Euler: per step) from t = 0 (libcosim: from the first step's end,
 it initializes the FMU inside that step).
 """
-import pathlib
 import subprocess
 import tempfile
 
 import fmpy
 import numpy as np
 
-from conftest import ROOT  # noqa: E402
+from conftest import ROOT
+
 JVM = ROOT / "tests" / "importers" / "jvm" / "target"
 REALS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy")
 FIELDS = ("time",) + REALS + ("mode", "contact")

@@ -1,6 +1,6 @@
 """Four more FMI 2.0 importers, installed by `bash run.sh test` from PyPI and Maven
 Central, run the default experiment (an IWC at eps = 1e-3, t = 0 .. 0.1, no start value
-changed) through Co-Simulation: libcosim, ecos, FMI4j, JavaFMI (tests/other_importers.py;
+changed) through Co-Simulation: libcosim, ecos, FMI4j, JavaFMI (tests/helpers/other_importers.py;
 docs/importers.md says why no Model Exchange).
 
 Each calls fmi2DoStep on fmpy's default grid, h = stop/500 = eps/5, and the FMU's own

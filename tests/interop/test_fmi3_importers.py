@@ -28,13 +28,10 @@ import pytest
 
 from helpers.fmi_sim import fmi3_fmu_fmi_sim_can_read, run_fmi_sim
 from helpers.other_importers import run_ecos, run_fmi4j_euler, run_jvm
-from painleve.theory import analytic as an
-try:   # the harness after issue #13's split into modules, and before it
-    from painleve.experiments.case import Case
-    from painleve.experiments.outcome import outcome_of_trajectory as outcome_of
-except ImportError:
-    from painleve.fmu.experiment import Case, outcome_of
 from helpers.rod_sim import OUTPUTS, phases, rod_energy
+from painleve.experiments.case import Case
+from painleve.experiments.outcome import outcome_of_trajectory as outcome_of
+from painleve.theory import analytic as an
 
 DEFAULT = Case()                          # the modelDescription's start values
 STATES = ["x", "v", "y", "w", "theta", "phi"]

@@ -8,7 +8,7 @@ with the previous step's, events handled at the step's end), so the two runs mus
 equal to round-off: what differs is only the importer between the master and the FMU.
 Against CVode the difference is Euler's first-order error in h/eps (the contact's time
 scale is eps, events are located to a step): h = eps/100 brings w within 3 % of e v0,
-as for fmi-sim's Euler (tests/test_second_importer.py). Forward Euler does not keep
+as for fmi-sim's Euler (tests/interop/test_second_importer.py). Forward Euler does not keep
 the energy from rising (it overshoots at the stick, located at a step's end), so the
 energy is checked against fmpy's Euler and for the loss the contact must take.
 """

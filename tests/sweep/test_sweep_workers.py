@@ -4,7 +4,7 @@ and an instance freed while CVode integrates in it corrupts the heap (an interru
 worker printed glibc's "free(): corrupted unsorted chunks")."""
 import threading
 
-from painleve.sweep.run import run
+from painleve.sweep import run as sweep
 
 
 class Recorder:

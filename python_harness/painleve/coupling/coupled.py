@@ -1,5 +1,5 @@
 """The coupled study of issue #15: PainleveRodSI on a ShakerTable, one SSP archive, run by a
-co-simulation master (painleve.masters).
+co-simulation master (painleve.coupling.masters).
 
 Coupling (docs/coupling.md): rod.y_floor <- table.position, rod.w_floor <- table.velocity,
 rod.v_floor <- table.belt_velocity, table.F_N <- rod.F_N, table.F_T <- rod.F_T. The rod's F_N
@@ -44,7 +44,7 @@ CONNECTIONS = (
 RECORD = tuple(f"{ROD}.{n}" for n in ROD_OUTPUTS + ROD_INPUTS) + \
     tuple(f"{TABLE}.{n}" for n in TABLE_OUTPUTS + TABLE_INPUTS)
 
-# The models' defaults (ISSUE15.md): the rod's (painleve.si's SIRod and SIState), the table's.
+# The models' defaults (ISSUE15.md): the rod's (painleve.coupling.si's SIRod and SIState), the table's.
 ROD_DEFAULTS = {**SIRod().parameters(), **SIState().start_values()}
 TABLE_DEFAULTS = dict(M=10.0, K=4e4, C=40.0, F0=50.0, frequency=5.0, belt_speed=0.0, position=0.0, velocity=0.0)
 
@@ -63,11 +63,11 @@ class Setup:
         return {**TABLE_DEFAULTS, **self.table}
 
     def si_rod(self):
-        """The rod's parameters as painleve.si's SIRod."""
+        """The rod's parameters as painleve.coupling.si's SIRod."""
         return SIRod(**{k: v for k, v in self.rod_values().items() if k in SIRod.__dataclass_fields__})
 
     def case(self):
-        """The paper's Case of the rod's start (painleve.si.case_of: alpha = m l^2/J, epsilon =
+        """The paper's Case of the rod's start (painleve.coupling.si.case_of: alpha = m l^2/J, epsilon =
         sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = (v - v_floor)/sqrt(g l), phi0 = phi
         sqrt(l/g), w10), relative to the table's surface at its start; None if the rod does not
         start on it."""
@@ -88,7 +88,7 @@ def write_coupled_ssp(path, rod_fmu, table_fmu, setup=None, *, stop_time=1.0):
 
 
 def run_coupled(rod_fmu, table_fmu, setup=None, *, stop_time, step, master="fmpy"):
-    """One coupled run in a temporary archive (removed after): the master's table (painleve.masters)."""
+    """One coupled run in a temporary archive (removed after): the master's table (painleve.coupling.masters)."""
     from .masters import run
     with tempfile.TemporaryDirectory(prefix="painleve-couple-") as work:
         ssp = write_coupled_ssp(pathlib.Path(work) / "coupled.ssp", rod_fmu, table_fmu, setup, stop_time=stop_time)

@@ -1,4 +1,4 @@
-"""Three co-simulation masters that run an SSP archive (painleve.ssp), each returning the same
+"""Three co-simulation masters that run an SSP archive (painleve.coupling.ssp), each returning the same
 table: one row per communication point t_k = k h, k = 1 .. N (stop = N h), field "time" and
 one field per recorded variable "component.variable" (an output's value at t_k; an input's
 value as the FMU read it back after the step: what it held over [t_(k-1), t_k]).

@@ -8,7 +8,7 @@ restart of solve_ivp from each event state. Modes, switching
 surfaces and their rules: reference_rod.
 
 Why it exists: an independent check of the FMU (same equations, different
-code, different solvers: tests/test_reference.py compares the two), and the
+code, different solvers: tests/experiments/test_reference.py compares the two), and the
 baseline of the benchmark (what the FMU saves over a Python model integrated
 by scipy: the Outcome's solver_stats carry solve_ivp's cost counters).
 

@@ -1,5 +1,5 @@
 """The compliant Painleve rod of docs/model.md §1-2 as a researcher would write it without
-the FMU, for painleve.reference: per mode its right-hand side and analytic Jacobian in
+the FMU, for painleve.experiments.reference: per mode its right-hand side and analytic Jacobian in
 numpy, its switching functions, and the rules that pick the mode after an event.
 
 * ``flight``  y > 0 or no compressive force: F_N = 0, v' = a, w' = b, phi' = 0;
@@ -14,7 +14,7 @@ numpy, its switching functions, and the rules that pick the mode after an event.
   lem:Filippov (and docs/model.md §1), w' = b + S_w F_N, phi' = S_phi F_N: it drops
   the O(1) a-terms (O(eps) over a stick of duration O(eps): Theorem 1's limits
   are the same) and, unlike the exact field, does work while sticking: dE/dt
-  gains phi^3 sin cos (tests/test_reference.py shows both).
+  gains phi^3 sin cos (tests/experiments/test_reference.py shows both).
 
 Switching surfaces (each a terminal event, watched only in the modes where it
 can end the mode): y = 0 (touch-down, and the return that ends a run),
@@ -26,7 +26,7 @@ as well, so a grazing dip below y = 0 inside one step is not missed.
 
 The rod's coefficients are written out here with ``math`` (the right-hand side runs
 ~1e4 times per case, and analytic.py's public functions validate their arguments on
-every call); tests/test_reference.py checks them against analytic.py.
+every call); tests/experiments/test_reference.py checks them against analytic.py.
 """
 from __future__ import annotations
 

@@ -177,7 +177,7 @@ def plot_video(d, path, *, dpi=150):
 
 def plot_elaw(d, path, *, dpi=150):
     """e(delta, theta0) against the compliance law's kappa (a) and beta (b): the rigid limit
-    (painleve.rigid_limit) as curves, the FMU's w/v0 at small eps as points."""
+    (painleve.theory.rigid_limit) as curves, the FMU's w/v0 at small eps as points."""
     from ..theory import rigid_limit
     p = d["params"]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))

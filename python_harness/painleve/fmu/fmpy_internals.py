@@ -11,7 +11,7 @@ Exchange loops use (me_fast_loop, si_experiment), and nothing else of fmpy's pri
   fmpy does not bind): the SI rod's loop (si_experiment) stops CVode exactly at an
   input's jump, so that no right-hand side sees the input after it.
 
-tests/test_me_fast_loop.py fails, naming what moved, if an fmpy update
+tests/fmu/test_me_fast_loop.py fails, naming what moved, if an fmpy update
 changes any of them."""
 from ctypes import POINTER, c_double, c_int, c_long, c_void_p
 
