@@ -22,9 +22,7 @@ def fmu_file(path, *, probe=True):
     the repository after `bash run.sh`, else the one installed with the package), checked so that a
     wrong path ends in one line saying what to do: a missing file, not an FMU, another FMI version, another
     model's FMU, no binary for this platform, and (with `probe`) one that does not load or instantiate."""
-    from ..fmu.experiment import BUNDLED_FMU
-    given = path or os.environ.get("PAINLEVE_FMU") or \
-        (BUNDLED_FMU if BUNDLED_FMU.is_file() and not os.path.exists(DEFAULT_FMU) else DEFAULT_FMU)
+    given = path or os.environ.get("PAINLEVE_FMU") or _repository_or_bundled(DEFAULT_FMU)
     p = pathlib.Path(given)
     if not p.exists():
         how = "" if path else " (the default; set PAINLEVE_FMU or pass --fmu)"
@@ -59,6 +57,14 @@ def fmu_file(path, *, probe=True):
     return str(p)
 
 
+def _repository_or_bundled(default):
+    """build/NAME.fmu where there is one (the repository after `bash run.sh`), else the one installed
+    with the package."""
+    from ..fmu.experiment import bundled
+    installed = bundled(pathlib.Path(default).name)
+    return str(installed) if installed.is_file() and not os.path.exists(default) else default
+
+
 def _fmi_version(p):
     """The fmiVersion attribute of the FMU's model description, read before fmpy validates it against
     the schema of a version it may not support (None if it cannot be read)."""
@@ -86,10 +92,8 @@ def coupled_fmu(path, role):
     line: missing, not an FMU, not FMI 2.0 (libcosim loads FMI 1.0 and 2.0 only), another model,
     no Co-Simulation, no binary for this platform. Returns the path and its variables by name."""
     default, required = {"rod": (DEFAULT_ROD_FMU, ROD_VARIABLES), "table": (DEFAULT_TABLE_FMU, TABLE_VARIABLES)}[role]
-    if path is None:        # build/NAME.fmu where there is one (the repository), else the package's own
-        import importlib.resources
-        bundled = importlib.resources.files("painleve").joinpath(pathlib.Path(default).name)
-        path = str(bundled) if bundled.is_file() and not os.path.exists(default) else default
+    if path is None:
+        path = _repository_or_bundled(default)
     p = pathlib.Path(path)
     where = f"painleve couple: --{role} {p}"
     if not p.exists():

@@ -19,7 +19,6 @@ event, the rows before and after it). `run_case` runs a paper's `Case` on the SI
 reduces it to its `Outcome` in the paper's units (si.to_paper), so that everything the
 harness checks on PainleveRod (acceptance.py) applies to the SI model.
 """
-import importlib.resources
 import math
 
 import numpy as np
@@ -28,13 +27,12 @@ from fmpy.sundials import CVodeSolver
 
 from ..experiments.case import horizon
 from ..experiments.outcome import outcome_of_trajectory
-from ..fmu.experiment import Experiment
+from ..fmu.experiment import Experiment, default_fmu
 from ..fmu.fmpy_internals import cvode_set_stop_time
 from ..fmu.me_fast_loop import event_iteration
 from . import si
 
 # The SI FMU a pip install of the package carries beside PainleveRod.fmu.
-BUNDLED_SI_FMU = importlib.resources.files("painleve").joinpath("PainleveRodSI.fmu")
 INPUTS = ("y_floor", "w_floor", "v_floor", "F_x", "F_y", "tau")
 STATES = ("x", "v", "y", "w", "theta", "phi")
 OUTPUTS = STATES + ("F_N", "F_T", "energy", "x_cm", "y_cm", "vx_cm", "vy_cm", "gap", "slip", "mode", "contact")
@@ -77,12 +75,7 @@ class SIExperiment(Experiment):
     Without a path, the FMU installed with the package."""
 
     def __init__(self, fmu_path=None, **kwargs):
-        if fmu_path is None:
-            if not BUNDLED_SI_FMU.exists():
-                raise FileNotFoundError(f"no FMU given and none installed at {BUNDLED_SI_FMU}: `pip install` the "
-                                        f"repository (it builds PainleveRodSI.fmu), or give the path of one")
-            fmu_path = str(BUNDLED_SI_FMU)
-        super().__init__(fmu_path, **kwargs)
+        super().__init__(default_fmu("PainleveRodSI.fmu") if fmu_path is None else fmu_path, **kwargs)
         missing = [n for n in (*INPUTS, *si.SIRod().parameters()) if n not in self.vr]
         if missing:
             self.close()

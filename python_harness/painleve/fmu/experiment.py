@@ -41,9 +41,14 @@ from . import fmi3_adapter
 from .cs_fast_loop import run_co_simulation
 from .me_fast_loop import run_model_exchange
 
-# The FMU a pip install of the package carries (CMake builds it into the wheel). Through the
-# package's resources, so that an editable install (its FMU in site-packages, its code here) finds it.
-BUNDLED_FMU = importlib.resources.files("painleve").joinpath("PainleveRod.fmu")
+
+def bundled(name):
+    """The FMU `name` that a pip install of the package carries (CMake builds it into the wheel). Through
+    the package's resources, so that an editable install (its FMU in site-packages, its code here) finds it."""
+    return importlib.resources.files("painleve").joinpath(name)
+
+
+BUNDLED_FMU = bundled("PainleveRod.fmu")
 # fmpy's fmi_type by the short name `painleve --interface` and the validation report use.
 FMI_TYPES = {"ME": "ModelExchange", "CS": "CoSimulation"}
 STATES = ("x", "v", "y", "w", "theta", "phi")     # the FMU's continuous states, in its order
@@ -56,12 +61,13 @@ class FmuLoadError(RuntimeError):
     instantiate: a GUID that does not match its binary, ...); the message says which."""
 
 
-def default_fmu():
-    """The FMU installed with the package, if this installation has one."""
-    if not BUNDLED_FMU.exists():
-        raise FileNotFoundError(f"no FMU given and none installed at {BUNDLED_FMU}: `pip install` the "
-                                f"repository (it builds PainleveRod.fmu), or give the path of one")
-    return str(BUNDLED_FMU)
+def default_fmu(name="PainleveRod.fmu"):
+    """The FMU `name` installed with the package, if this installation has one."""
+    installed = bundled(name)
+    if not installed.exists():
+        raise FileNotFoundError(f"no FMU given and none installed at {installed}: `pip install` the "
+                                f"repository (it builds {name}), or give the path of one")
+    return str(installed)
 
 
 class Experiment:
