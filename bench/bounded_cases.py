@@ -126,6 +126,21 @@ def make_case(models, seed, index):
     return case
 
 
+def issue_cases(models):
+    """Issue 23's hangs as cases (negative indices), where their FMUs are built: tolerance = start time =
+    48.125 then steps of 0.02 and 0.069 (each model, each FMI version); PainleveRod at tolerance 1.56e-6
+    from a deep, stiff start; PainleveRodSI at tolerance 0.157 (a step across t = 2.12 never returned)."""
+    rod = dict(alpha=19.93, epsilon=4.87e-6, kappa=3.19, y=-0.1138, w=0.863, phi=1.220)
+    si = dict(m=1.30, l=4.30, J=0.0662, c=2801, w_floor=0.918, F_x=0.184, F_y=0.0925, w=0.731, phi=2.64)
+    cases = [dict(model=model, fmi=fmi, tolerance=48.125, start=48.125, values={}, steps=[0.02, 0.069])
+             for (model, fmi) in FMUS]
+    cases += [dict(model="PainleveRod", fmi=fmi, tolerance=1.56e-6, start=0.0, values=rod, steps=[0.257, 0.257])
+              for fmi in (2, 3)]
+    cases.append(dict(model="PainleveRodSI", fmi=2, tolerance=0.157, start=0.0, values=si, steps=[0.25] * 10))
+    return [dict(case, index=-k - 1, seed="issue23", interface="CS") for k, case in enumerate(cases)
+            if (case["model"], case["fmi"]) in models]
+
+
 def describe(case):
     """A case as one line of its values (to replay it by hand, or by index)."""
     head = (f"case {case['index']} (seed {case['seed']}): {case['model']} FMI {case['fmi']}.0 {case['interface']}"
@@ -165,6 +180,7 @@ def _co_simulation(case, md, unzipdir, calls):
     outputs = [v.valueReference for v in md.modelVariables
                if v.type in ("Real", "Float64") and v.causality == "output"]
     fmi3 = case["fmi"] == 3
+    failed = True                   # an Error leaves the instance in a state where only freeing it is allowed
     set_real, get_real = (fmu.setFloat64, fmu.getFloat64) if fmi3 else (fmu.setReal, fmu.getReal)
     try:
         t = case["start"]
@@ -186,19 +202,19 @@ def _co_simulation(case, md, unzipdir, calls):
                     values = get_real(outputs)
                 except FMICallException as e2:
                     return "illegal", f"after a Discard of doStep({t!r}, {h!r}): {e2}"
+                failed = False
                 if not all(math.isfinite(x) for x in values):
                     return "illegal", f"after a Discard of doStep({t!r}, {h!r}): outputs {values}"
                 return "discard", f"doStep({t!r}, {h!r})"
             t += h
         values = get_real(outputs)
+        failed = False
         if not all(math.isfinite(x) for x in values):
             return "illegal", f"outputs {values}"
         return "ok", ""
     finally:
-        try:
+        if not failed:
             fmu.terminate()
-        except Exception:
-            pass
         fmu.freeInstance()
 
 
