@@ -1,7 +1,9 @@
 """The regression inputs of tests/c/corpus that replay a finding as a readable call
 sequence: each is written here in the byte format of fuzz_fmi.c (FMI 2.0) or
 fuzz_fmi3.c (FMI 3.0) (see fuzz_bytes.h), so that the file can be remade and
-read. Values are raw IEEE bit patterns (exact), instances are slot 0.
+read. Values are raw IEEE bit patterns (exact), instances are slot 0. Inputs
+kept as libFuzzer wrote them (regress-bounded-found-*, fuzz_bounded's format)
+are not listed here.
 
     python tests/c/corpus_inputs.py            rewrite the files below in tests/c/corpus
     python tests/c/corpus_inputs.py --check    fail if a file differs from what is written here
@@ -127,6 +129,18 @@ INPUTS = {
         Fmi3().enter_init(1.56e-6, 0.0).set_float64(ISSUE23_ROD).exit_init().do_step(0.1).do_step(0.1).b,
     "regress-si-issue23-loose-tolerance-step-hangs":
         Fmi2().setup(0.157, 0.0).set_real(ISSUE23_SI).initialize().do_step(0.1).do_step(0.1).b,
+    # tests/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
+    "regress3-bounded-case-363-mu-1e6-step-hangs":
+        Fmi3().enter_init(0.00016730382132527658, 48.125)
+        .set_float64(rod_values(alpha=10.0600042616934, mu=1e6, delta=0.7782685507711189, epsilon=0.00485469810196373))
+        .exit_init().do_step(0.014665020780266711).do_step(0.00014801558883998113).do_step(0.011469033800320013)
+        .do_step(0.002528558456644627).do_step(0.02043836028790396).b,
+    # fuzz_bounded's first finding: tolerance 48.125, start 1, alpha = mu = 400.06, delta = 2.94e-4, x = -882.8:
+    # doStep(1, 2) never returned.
+    "regress-bounded-tolerance-48.125-mu-400-step-hangs":
+        Fmi2().setup(48.125, 1.0).set_real(rod_values(alpha=400.05642964899721, mu=400.05642964899721,
+                                                      delta=0.00029427271762092817, x=-882.8125))
+        .initialize().do_step(2.0).b,
     # fuzz_bounded's seeds: PainleveRod's 12 parameters, states and inputs kept (6 + 6 bytes; the other
     # models read the step bytes as some of theirs), then steps.
     "seed-bounded-cosim": Bounded(True, 1e-6, 0.0, 12, [24] * 8 + [16] * 4).b,
