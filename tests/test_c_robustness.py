@@ -10,7 +10,10 @@ apart from the robustness checks; valgrind runs both. The FMI 3.0 layer has its
 own driver (tests/c/fmi3_*.c: every fmi3 call in every state to the letter of
 FMI 3.0, derivatives, robustness) and fuzz target (fuzz_fmi3.c), over the same
 instrumented libraries, which export both layers; both fuzz targets replay the
-whole corpus.
+whole corpus. fuzz_bounded (every model; fuzz_bounded3 for FMI 3.0) fuzzes
+whole runs instead: tolerance, start time, step sizes, parameters, states and
+inputs, Model Exchange and Co-Simulation; every call must return with a legal
+status (Discard from a doStep only, the getters answering after it).
 
 Every model gets the FMI 2.0 driver, conformance table and fuzz target:
 PainleveRod (fmu_src) and each models/NAME that tests/c/CMakeLists.txt names by
@@ -187,7 +190,7 @@ def fuzz_runs(target):
     return int(os.environ.get(f"FUZZ_RUNS_{target}", os.environ.get("FUZZ_RUNS", FUZZ_RUNS[target])))
 
 
-def test_corpus_files_are_what_corpus_inputs_writes():
+def test_fuzz_corpus_files_are_what_corpus_inputs_writes():
     # The regress-issue* inputs are written from readable call sequences (tests/c/corpus_inputs.py).
     r = subprocess.run([sys.executable, str(C_TESTS / "corpus_inputs.py"), "--check"], capture_output=True, text=True)
     assert r.returncode == 0, r.stdout + r.stderr

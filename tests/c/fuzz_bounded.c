@@ -13,8 +13,9 @@
  *   ...     steps, one byte each: h = span * 10^-(byte % 64 / 8) (span: the profile's
  *           PROFILE_FUZZ_SPAN), an input set anew before the step when the byte >= 192
  *
- * The integrated time of an input is bounded (2 spans; Model Exchange also by
- * 400 Euler steps), not the work: a call's work is the FMU's to bound. Besides
+ * The integrated time of an input is bounded (2 spans) and its calls (32
+ * doSteps, 400 Euler steps), not the work: a call's work is the FMU's to bound
+ * (FUZZ_TRACE=1 prints each call with its time). Besides
  * AddressSanitizer and UBSan (and libFuzzer's -timeout: a call that does not
  * return is a finding), it aborts on:
  *   - a status that is not OK, Warning, Discard or Error (Fatal included);
@@ -32,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #ifdef BOUNDED_FMI3
 #define FUZZ_NAME "fuzz_bounded3"
@@ -87,7 +89,14 @@ static int check(const char *call, int st, long errors_before, bool may_discard)
     INVARIANT(st != ST_ERROR || harness.error_messages > errors_before,
               "%s returned Error without logging an error", call);
     INVARIANT(harness.bad_messages == 0, "malformed log message: %s", harness.last_bad);
-    if (getenv("FUZZ_TRACE")) fprintf(stderr, "  %s -> %d\n", call, st);
+    if (getenv("FUZZ_TRACE")) { /* with the time since the previous call returned */
+        static struct timespec last;
+        struct timespec now;
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        fprintf(stderr, "  %s -> %d (%.3f s)\n", call, st,
+                (double)(now.tv_sec - last.tv_sec) + 1e-9 * (double)(now.tv_nsec - last.tv_nsec));
+        last = now;
+    }
     return st;
 }
 
@@ -312,7 +321,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int st = initialize(c, flags, &t, span);
     if (!cs && st <= ST_WARNING) st = event_iteration(c);
     double left = 2 * span; /* integrated time */
-    for (int steps = 0; st <= ST_WARNING && in.n > 0 && steps < 400; ++steps) {
+    /* The calls of an input are bounded too, so that -timeout is a bound on one call's work:
+     * 32 doSteps (each may use the FMU's whole budget) or 400 Euler steps (each a few cheap calls). */
+    const int max_steps = cs ? 32 : 400;
+    for (int steps = 0; st <= ST_WARNING && in.n > 0 && steps < max_steps; ++steps) {
         const uint8_t sel = take(&in);
         const double h = span * pow(10.0, -(double)(sel % 64) / 8.0);
         if (h > left) break;
