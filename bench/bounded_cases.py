@@ -194,7 +194,11 @@ def _co_simulation(case, md, unzipdir, calls):
         fmu.exitInitializationMode()
         for h in case["steps"]:
             try:
-                fmu.doStep(t, h)
+                answer = fmu.doStep(t, h)
+                # FMI 3.0 §4.2.1: without an early return, the step ends at t + h
+                if fmi3 and not answer[2] and answer[3] != t + h:
+                    failed = False
+                    return "illegal", f"doStep({t!r}, {h!r}) returned lastSuccessfulTime {answer[3]!r}"
             except FMICallException as e:
                 if e.status != 2:
                     raise
