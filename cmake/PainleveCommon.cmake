@@ -94,3 +94,37 @@ function(painleve_find_sundials WANTED)
   set(SUNDIALS_VERSION "${version}" PARENT_SCOPE)
   set(SUNDIALS_LIBRARIES ${libraries} PARENT_SCOPE)
 endfunction()
+
+# MODEL_SOURCES, MODEL_INCLUDE_DIRS and MODEL_HEADERS of the model in MODEL_DIR, a
+# folder of FMU_SRC_DIR/models. NAMES are its <SourceFiles> (flat, as in the source
+# FMU's sources/): each the model's own file if its folder has one, else the one of
+# the shared folders below the models (FMU_SRC_DIR/rod, then FMU_SRC_DIR/fmi) that
+# has it. The include path is the model's folder, then each shared folder its sources
+# come from; the headers are those folders' (all FMI versions': a build drops the other's).
+function(painleve_model_sources MODEL_DIR FMU_SRC_DIR NAMES)
+  set(dirs ${MODEL_DIR})
+  set(sources "")
+  foreach(name IN LISTS NAMES)
+    set(found "")
+    foreach(dir ${MODEL_DIR} ${FMU_SRC_DIR}/rod ${FMU_SRC_DIR}/fmi)
+      if(NOT found AND EXISTS ${dir}/${name})
+        set(found ${dir})
+      endif()
+    endforeach()
+    if(NOT found)
+      message(FATAL_ERROR "<SourceFiles> of ${MODEL_DIR} names ${name}: in neither the model's folder, "
+                          "${FMU_SRC_DIR}/rod nor ${FMU_SRC_DIR}/fmi")
+    endif()
+    list(APPEND sources ${found}/${name})
+    list(APPEND dirs ${found})
+  endforeach()
+  list(REMOVE_DUPLICATES dirs)
+  set(headers "")
+  foreach(dir IN LISTS dirs)
+    file(GLOB found CONFIGURE_DEPENDS ${dir}/*.h)
+    list(APPEND headers ${found})
+  endforeach()
+  set(MODEL_SOURCES ${sources} PARENT_SCOPE)
+  set(MODEL_INCLUDE_DIRS ${dirs} PARENT_SCOPE)
+  set(MODEL_HEADERS ${headers} PARENT_SCOPE)
+endfunction()

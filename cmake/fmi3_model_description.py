@@ -7,14 +7,14 @@ and the FMI 3.0 source FMU's buildDescription.xml.
 FMI 3.0 names variables by type (Float64, Int32, Boolean), refers to them by
 value reference where FMI 2.0 used indices, and makes the event indicators
 and the independent variable `time` variables: they follow the model's own
-value references (fmu_src/fmi3_instance.h).
+value references (fmu_src/fmi/fmi3_instance.h).
 """
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 TYPES = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
-# The event indicators of fmu_src/rod.c, in order, as FMI 3.0 variables.
+# The event indicators of fmu_src/rod/rod.c, in order, as FMI 3.0 variables.
 INDICATORS = [
     ("indicator_y", "y: the contact surface"),
     ("indicator_g", "g = -y/eps - delta w: the compliant force's zero"),

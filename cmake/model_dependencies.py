@@ -1,6 +1,6 @@
 """model_dependencies.h from a model description's <ModelStructure>: the one home of which
 unknown depends on which known. A model whose partial derivatives come from a chain rule
-(models/PainleveRodSI) answers exactly 0 for every pair not declared here, where the chain
+(fmu_src/models/PainleveRodSI) answers exactly 0 for every pair not declared here, where the chain
 rule would leave round-off; the conformance tests check the declared pairs against central
 differences and the undeclared ones against zero.
 

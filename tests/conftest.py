@@ -55,13 +55,13 @@ def fmu3_path():
 
 @pytest.fixture(scope="session")
 def si_fmu_path():
-    """The rod in SI units with inputs (models/PainleveRodSI)."""
+    """The rod in SI units with inputs (fmu_src/models/PainleveRodSI)."""
     return built_fmu("PainleveRodSI.fmu")
 
 
 @pytest.fixture(scope="session")
 def table_path():
-    """The shaker table (models/ShakerTable)."""
+    """The shaker table (fmu_src/models/ShakerTable)."""
     return built_fmu("ShakerTable.fmu")
 
 

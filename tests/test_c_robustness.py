@@ -1,6 +1,6 @@
 """The FMU's C code under AddressSanitizer + UBSan, valgrind memcheck and
 libFuzzer: tests/c is built with clang (its own CMake project, which compiles
-fmu_src itself), the driver exercises every FMI call against the dlopened
+fmu_src/ itself), the driver exercises every FMI call against the dlopened
 library, the fuzz target runs for a bounded time, and any report fails.
 cvode_setup_faults fails each SUNDIALS call of Co-Simulation's set-up in turn.
 
@@ -16,10 +16,11 @@ inputs, Model Exchange and Co-Simulation; every call must return with a legal
 status (Discard from a doStep only, the getters answering after it).
 
 Every model gets the FMI 2.0 driver, conformance table and fuzz target:
-PainleveRod (fmu_src) and each models/NAME that tests/c/CMakeLists.txt names by
-add_model_dir_checks (programs suffixed _NAME, its FMU built from its own
-modelDescription.xml's sources, its tables from that XML); a models/NAME that
-it does not name fails test_every_model_has_its_conformance_checks.
+PainleveRod (fmu_src/models/PainleveRod, the top-level modelDescription.xml) and
+each fmu_src/models/NAME that tests/c/CMakeLists.txt names by add_model_dir_checks
+(programs suffixed _NAME, its FMU built from its own modelDescription.xml's
+sources, its tables from that XML); a fmu_src/models/NAME that it does not name
+fails test_every_model_has_its_conformance_checks.
 
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
 sources (to check that a planted bug is caught).
@@ -43,6 +44,7 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 C_TESTS = ROOT / "tests" / "c"
+MODELS_DIR = ROOT / "fmu_src" / "models"
 CORPUS = C_TESTS / "corpus"
 FUZZ_SEED = int(os.environ.get("FUZZ_SEED", "1"))
 # Seconds one input may take: a legal input's calls take milliseconds under the sanitizers,
@@ -56,7 +58,7 @@ MODELS = {"PainleveRod": "", **{name: f"_{name}" for name in MODEL_DIRS}}
 
 
 def model_description(model):
-    path = ROOT / "modelDescription.xml" if model == "PainleveRod" else ROOT / "models" / model / "modelDescription.xml"
+    path = ROOT / "modelDescription.xml" if model == "PainleveRod" else MODELS_DIR / model / "modelDescription.xml"
     return ET.parse(path).getroot()
 
 SANITIZER_ENV = {
@@ -99,7 +101,7 @@ def assert_clean(code, output, what):
 
 
 def test_every_model_has_its_conformance_checks():
-    models = sorted(p.parent.name for p in (ROOT / "models").glob("*/modelDescription.xml"))
+    models = sorted(p.parent.name for p in MODELS_DIR.glob("*/modelDescription.xml"))
     assert models == sorted(MODEL_DIRS), "tests/c/CMakeLists.txt: add_model_dir_checks(NAME) and tests/c/profiles/NAME.h"
 
 

@@ -146,7 +146,7 @@ def wrong_physics_fmu(tmp_path_factory):
         shutil.copy(ROOT / name, src / name)
     for folder in ("fmu_src", "cmake"):
         shutil.copytree(ROOT / folder, src / folder)
-    rod = src / "fmu_src" / "rod.c"
+    rod = src / "fmu_src" / "rod" / "rod.c"
     text = rod.read_text()
     right = "r.S_w = (1 + al) / k;"
     if right not in text:

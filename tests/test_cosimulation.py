@@ -77,14 +77,37 @@ def test_a_fast_rod_is_not_taken_for_a_zeno_run(loaded):
     # A rod spinning at phi = 3e4 with eps = 0.1 dips its end below the floor about every 2e-4
     # time units (several events each): thousands of events, each at its own time. The guard
     # counts events at one instant only, so the run goes on; friction takes energy, nothing adds it.
+    # (Steps of 0.25: a longer one spends the solver-step budget of one call; see the next test.)
     rod = Slave(loaded, theta=0.3, phi=3e4, y=0.5, epsilon=0.1, delta=0.0, mu=1.0)
     energy = [rod.fmu.getReal([rod.vr["energy"]])[0]]
-    for _ in range(4):
-        rod.step(0.5)
+    for _ in range(8):
+        rod.step(0.25)
         energy.append(rod.fmu.getReal([rod.vr["energy"]])[0])
     switches, = rod.fmu.getInteger([rod.vr["switches"]])
     assert switches > 1000 and rod.fmu.getReal([rod.vr["t_switch"]])[0] > 1.9
     assert np.all(np.diff(energy) <= 1e-6 * energy[0]) and energy[-1] < energy[0]
+
+
+def test_a_step_beyond_the_call_budget_is_discarded_where_it_stopped_and_the_run_goes_on(loaded):
+    # The same spinning rod (4e5 solver steps per time unit) asked for one step of 2: the call
+    # stops when its 200,000 solver steps are spent, answers fmi2Discard with one log line
+    # naming the budget, and reports how far it got; the master goes on from there.
+    rod = Slave(loaded, theta=0.3, phi=3e4, y=0.5, epsilon=0.1, delta=0.0, mu=1.0)
+    energy0 = rod.fmu.getReal([rod.vr["energy"]])[0]
+    with pytest.raises(FMICallException) as refused:
+        rod.step(2.0)
+    assert refused.value.status == fmpy.fmi2.fmi2Discard
+    reached = rod.fmu.getRealStatus(fmpy.fmi2.fmi2LastSuccessfulTime)
+    assert 0 < reached < 2.0
+    budget_lines = [m for m in rod.messages if "budget of 200000 solver steps per call" in m[2]]
+    assert len(budget_lines) == 1 and f"{reached:.17g}" in budget_lines[0][2]
+    energy = [rod.fmu.getReal([rod.vr["energy"]])[0]]
+    assert energy[0] <= energy0 * (1 + 1e-6)
+    rod.t = reached
+    for _ in range(3):
+        rod.step(0.1)
+        energy.append(rod.fmu.getReal([rod.vr["energy"]])[0])
+    assert np.all(np.diff(energy) <= 1e-6 * energy0)
 
 
 def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(loaded):

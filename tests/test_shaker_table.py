@@ -1,4 +1,4 @@
-"""ShakerTable.fmu (models/ShakerTable, issue #15's second FMU): a table top of mass M on a
+"""ShakerTable.fmu (fmu_src/models/ShakerTable, issue #15's second FMU): a table top of mass M on a
 spring K and a damper C, driven by F0 sin(2 pi f t) and loaded by the input F_N,
 
     M z'' + C z' + K z = F0 sin(W t) - F_N,   W = 2 pi f,
@@ -24,7 +24,7 @@ from scipy.integrate import simpson
 
 from conftest import ROOT
 
-# The defaults of the issue's spec (models/ShakerTable/modelDescription.xml start values).
+# The defaults of the issue's spec (fmu_src/models/ShakerTable/modelDescription.xml start values).
 DEFAULTS = dict(M=10.0, K=4e4, C=40.0, F0=50.0, frequency=5.0, belt_speed=0.0)
 INTERFACES = ["ModelExchange", "CoSimulation"]
 _P = POINTER(c_double)
@@ -98,7 +98,7 @@ def test_fmpy_validation_finds_no_problem(table_path):
 def test_config_h_lists_the_variables_of_the_model_description(table_path):
     """Value references, names, causalities and ranges: config.h's list is the model
     description's, in its order (the C side's value references are the list's indices)."""
-    text = (ROOT / "models" / "ShakerTable" / "config.h").read_text()
+    text = (ROOT / "fmu_src" / "models" / "ShakerTable" / "config.h").read_text()
     bounds = dict(FORCE_BOUND=1e9, STATE_BOUND=1e6)
 
     def number(s):

@@ -16,8 +16,16 @@ from fmpy.build import build_platform_binary
 from conftest import ROOT
 
 FMU_SRC = ROOT / "fmu_src"
+# PainleveRod's folders, its own first, then the shared ones below it (the build's include path).
+FOLDERS = [FMU_SRC / "models" / "PainleveRod", FMU_SRC / "rod", FMU_SRC / "fmi"]
+GENERATED = ROOT / "build" / "generated" / "PainleveRod"
 FMI_HEADERS = pathlib.Path(fmpy.__file__).parent / "c-code"
 OUTPUTS = ["x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact"]
+
+
+def fmi2_files(pattern):
+    """The files of FOLDERS that match pattern, less the FMI 3.0 layer's."""
+    return [p for folder in FOLDERS for p in sorted(folder.glob(pattern)) if not p.name.startswith("fmi3_")]
 
 
 def sundials_libraries():
@@ -44,9 +52,9 @@ def test_source_files_are_every_source_for_both_interfaces(fmu_path):
     with zipfile.ZipFile(fmu_path) as z:
         md = ElementTree.fromstring(z.read("modelDescription.xml"))
         me, cs = ([f.get("name") for f in md.findall(f"{i}/SourceFiles/File")] for i in ("ModelExchange", "CoSimulation"))
-        assert me == cs and set(me) == {p.name for p in FMU_SRC.glob("*.c") if not p.name.startswith("fmi3_")}
+        assert me == cs and set(me) == {p.name for p in fmi2_files("*.c")}
         shipped = {pathlib.PurePosixPath(n).name for n in z.namelist() if n.startswith("sources/") and not n.endswith("/")}
-    headers = {p.name for p in FMU_SRC.glob("*.h") if not p.name.startswith("fmi3_")} | {"model_description.h"}
+    headers = {p.name for p in fmi2_files("*.h")} | {"model_description.h", "model_dependencies.h"}
     assert shipped == set(me) | headers
 
 
@@ -73,10 +81,10 @@ def test_fmpy_compile_without_cvode_runs_model_exchange_and_says_why_cosimulatio
 def compile_with_prefix(prefix, out):
     """The sources as objects under FMI2_FUNCTION_PREFIX=prefix, in a static library."""
     objects = []
-    for source in sorted(p for p in FMU_SRC.glob("*.c") if not p.name.startswith("fmi3_")):
+    for source in fmi2_files("*.c"):
         obj = out / f"{prefix}{source.stem}.o"
         subprocess.run(["cc", "-c", "-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", f"-DFMI2_FUNCTION_PREFIX={prefix}",
-                        "-DHAVE_CVODE", f"-I{FMU_SRC}", f"-I{ROOT / 'build' / 'generated'}", f"-I{FMI_HEADERS}",
+                        "-DHAVE_CVODE", *(f"-I{folder}" for folder in FOLDERS), f"-I{GENERATED}", f"-I{FMI_HEADERS}",
                         str(source), "-o", str(obj)], check=True, capture_output=True, text=True)
         objects.append(obj)
     library = out / f"lib{prefix}.a"
@@ -92,7 +100,7 @@ def test_two_prefixed_copies_link_into_one_program_and_run_side_by_side(fmu_path
         names = re.findall(r"^[0-9a-f]+ [A-Z] (\S+)$", symbols, re.M)
         assert names and [n for n in names if not n.startswith(prefix)] == [], "names without the prefix"
     program = tmp_path / "two_prefixes"
-    subprocess.run(["cc", "-std=c99", "-Wall", "-Werror", f"-I{FMI_HEADERS}", f"-I{ROOT / 'build' / 'generated'}",
+    subprocess.run(["cc", "-std=c99", "-Wall", "-Werror", f"-I{FMI_HEADERS}", f"-I{GENERATED}",
                     str(ROOT / "tests" / "c" / "two_prefixes.c"), *map(str, libraries), *sundials_libraries(), "-lm",
                     "-o", str(program)], check=True, capture_output=True, text=True)
     run = subprocess.run([str(program)], capture_output=True, text=True, timeout=60)

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from .analytic import check_case, predict
 
-# The parameters' ranges, the FMU's own (fmu_src/config.h, the min/max of modelDescription.xml;
+# The parameters' ranges, the FMU's own (fmu_src/models/PainleveRod/config.h, the min/max of modelDescription.xml;
 # tests/test_cli.py checks they agree): the CLI and sweeps refuse a value outside them before
 # the FMU would. {name: (min, max)}, both ends included.
 RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon": (1e-8, 1.0),

@@ -3,7 +3,7 @@
 The paper (Hogan & Kristiansen) proves Theorem 1 for any normal force
 F_N = eps^-1 h(y/eps, w) with h = -yh - delta w + O((yh + w)^2) (eq hNon) but
 computes e only for the linear truncation (eq hLin, `analytic.e`). Here e is
-computed numerically for the compliance law of the FMU (fmu_src/rod.h):
+computed numerically for the compliance law of the FMU (fmu_src/rod/rod.h):
 
     h(yh, w) = -yh + kappa d^2 - delta w (1 + beta d),   d = max(-yh, 0),
 
@@ -45,7 +45,7 @@ START = 1e-7   # the manifold is entered at |w| = START |w_stick|: its curvature
 
 
 def h(yh, w, delta, kappa=0.0, beta=0.0):
-    """The compliance law h(yh, w) (as fmu_src/rod.c's rod_compliance computes it)."""
+    """The compliance law h(yh, w) (as fmu_src/rod/rod.c's rod_compliance computes it)."""
     d = np.maximum(-yh, 0.0)
     return -yh + kappa * d * d - delta * w * (1 + beta * d)
 

@@ -1,4 +1,4 @@
-/* A model's FMU (PainleveRod, or models/NAME as fmi_driver_NAME) through its
+/* A model's FMU (PainleveRod, or fmu_src/models/NAME as fmi_driver_NAME) through its
  * C ABI, as an importer loads it (dlopen): every FMI
  * function in every instance state of both interfaces against FMI 2.0.4
  * (conformance_table.c, conformance_directional.c), its inputs

@@ -1,6 +1,6 @@
 /* libFuzzer target: the input's bytes become a sequence of FMI calls on up to
  * three instances of a model (one target per model: fuzz_fmi for PainleveRod,
- * fuzz_fmi_NAME for models/NAME), with the values, value references, counts
+ * fuzz_fmi_NAME for fmu_src/models/NAME), with the values, value references, counts
  * and NULL pointers they carry (NaN, infinities, denormals, range limits,
  * epsilon huge and tiny, raw bit patterns). Besides AddressSanitizer and
  * UBSan it checks, and aborts on:

@@ -48,7 +48,7 @@ static void test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_th
         ++found;
         const double before[ROD_NX] = { x[0], x[1], x[2], x[3], x[4], x[5] };
         bool moved = false;
-        CHECK(rod_move_off_surfaces(&p, (RodMode){ true, 0 }, x, &moved), "theta = %g: search failed", theta);
+        CHECK(rod_move_off_surfaces(&p, (RodMode){ true, 0 }, x, 1, &moved), "theta = %g: search failed", theta);
         double z[ROD_NZ];
         rod_event_indicators(&p, (RodMode){ true, 0 }, x, z);
         CHECK(moved && z[ROD_Z_SLIP] < 0, "theta = %g: fold indicator %g after the move, wanted < 0", theta,

@@ -1,0 +1,140 @@
+/* A Co-Simulation step under any FMI version (instance.h): the embedded CVODE
+ * of cosim.c integrates the model, and each event it locates gets the same
+ * event update as in Model Exchange.
+ *
+ * CVODE continues from one step to the next (its history is the trajectory's:
+ * a communication point costs no restart) and restarts after events and
+ * wherever the trajectory may have been replaced: initialization, reset, FMU
+ * state get and set. So the FMU state is still just the model's. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+
+#include "instance.h"
+
+#ifdef HAVE_CVODE
+#include "cosim.h"
+
+void instance_free_solver(Instance *in)
+{
+    cosim_free(in->solver);
+    in->solver = NULL;
+}
+
+static Status restart(Instance *in, const char *call)
+{
+    char err[512];
+    if (!cosim_start(in->solver, &in->model, in->time, in->tolerance, err, sizeof err))
+        return instance_fail(in, call, "%s", err);
+    model_begin_integration(&in->model);
+    in->solver_live = true;
+    return STATUS_OK;
+}
+
+/* What one Co-Simulation call may spend (docs/bounded_calls.md). An IWC takes
+ * 4 events and a few hundred CVODE steps (286 at eps = 1e-6); a rod resting
+ * on the floor at eps = 1e-8 about 4e4 steps per time unit, one spinning at
+ * phi = 3e4 about 4e5 (a contact every 2e-4). At 2-20 us a step here the
+ * budgets hold hundreds of IWCs and return within a few seconds. A master
+ * whose step needs more gets fmi2Discard / fmi3Discard at the time reached
+ * (its last successful time) and goes on from there with smaller steps. */
+#define MAX_SOLVER_STEPS_PER_CALL 200000L
+#define MAX_EVENTS_PER_CALL 20000L
+
+/* The state where a budget ran out, by the states' names, for the log line. */
+static void describe_states(const Instance *in, char *text, size_t size)
+{
+    double x[MODEL_NX];
+    size_t n = 0;
+    model_get_states(&in->model, x);
+    text[0] = '\0';
+    for (size_t i = 0; i < MODEL_NX && n < size; ++i)
+        n += (size_t)snprintf(text + n, size - n, "%s%s = %.6g", i ? ", " : "",
+                              model_variable(model_state_vr(i))->name, x[i]);
+}
+
+static Status out_of_budget(Instance *in, const char *call, long budget, const char *what, double t_end)
+{
+    char states[384];
+    describe_states(in, states, sizeof states);
+    return instance_discard(in, call, "the budget of %ld %s per call is spent at t = %.17g, before the step's end "
+                            "%.17g (%s): the step stops there; go on from that last successful time, or with "
+                            "smaller steps", budget, what, in->time, t_end, states);
+}
+
+static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+{
+    if (!in->solver) in->solver = cosim_new();
+    if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
+    if (in->inputs_jumped) {   /* the master's new inputs: the mode may change (a stick may end) */
+        bool changed;
+        in->inputs_jumped = false;
+        in->solver_live = false;
+        if (instance_event_update(in, call, &changed) != STATUS_OK) return STATUS_ERROR;
+    }
+    if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
+    const double t_start = in->time;
+    long steps_left = MAX_SOLVER_STEPS_PER_CALL;
+    long events = 0;
+    /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
+    while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
+        char err[512];
+        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, &steps_left, err, sizeof err);
+        if (r == COSIM_FAILED) {
+            in->solver_live = false;
+            return instance_fail(in, call, "%s", err);
+        }
+        if (r == COSIM_REACHED) break;
+        if (r == COSIM_BUDGET) return out_of_budget(in, call, MAX_SOLVER_STEPS_PER_CALL, "solver steps", t_end);
+        /* CVODE continues from its own last time, which a master's communication point may pass
+         * by rounding errors: a root it locates before the step's start is at the start. */
+        in->time = fmax(in->time, t_start);
+        in->solver_live = false;
+        if (policy == RETURN_AT_EVENT) {
+            *end = STEP_EVENT;
+            return STATUS_OK;
+        }
+        bool changed;
+        if (instance_event_update(in, call, &changed) != STATUS_OK || restart(in, call) != STATUS_OK)
+            return STATUS_ERROR;
+        if (policy == RETURN_AFTER_EVENT) {
+            *end = STEP_EVENT;
+            return STATUS_OK;
+        }
+        if (++events >= MAX_EVENTS_PER_CALL) return out_of_budget(in, call, MAX_EVENTS_PER_CALL, "events", t_end);
+    }
+    in->time = t_end;
+    return STATUS_OK;
+}
+#else
+void instance_free_solver(Instance *in)
+{
+    in->solver = NULL;
+}
+
+static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
+{
+    (void)t_end, (void)policy, (void)end;
+    return instance_fail(in, call, "this binary was built without SUNDIALS CVODE: Co-Simulation is not available "
+                                   "(rebuild with libsundials-dev installed, or use Model Exchange)");
+}
+#endif
+
+/* Communication points closer than this (relative) are the same point. */
+#define SAME_TIME 1e-12
+
+Status instance_step(Instance *in, const char *call, double t, double h, StepPolicy policy, StepEnd *end)
+{
+    *end = STEP_REACHED;
+    if (!(isfinite(t) && fabs(t - in->time) <= SAME_TIME * fmax(1, fabs(t))))
+        return instance_fail(in, call, "currentCommunicationPoint = %.17g is not the instance's time %.17g", t,
+                             in->time);
+    if (!(isfinite(h) && h > 0))
+        return instance_fail(in, call, "communicationStepSize = %g must be finite and > 0", h);
+    in->time = t;    /* the master's point: where the step starts, and nothing it reports comes before */
+    model_step_begin(&in->model, t);
+    const Status s = integrate(in, call, t + h, policy, end);
+    if (s == STATUS_ERROR) return s;
+    in->last_successful_time = in->time;   /* a Discard's too: the state is valid there */
+    return s;
+}

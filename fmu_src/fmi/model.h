@@ -1,0 +1,159 @@
+/* The model interface: everything a model provides to the FMI layers that sit
+ * on it, in the way of the Reference-FMUs. An FMI file calls only these
+ * functions and knows no state, mode or physics; the model knows no FMI.
+ * The model's own metadata and data (config.h) fill in the constants. */
+#ifndef MODEL_H
+#define MODEL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "model_event.h"
+
+/* The model's own metadata: its directory comes first on the include path
+ * (painleve_model_sources, cmake/PainleveCommon.cmake), so each model built on
+ * this interface, a folder of fmu_src/models, gets its own. */
+#include <config.h>
+
+typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
+/* PARAMETER: fixed, set before initialization ends; STATE: a continuous state;
+ * INPUT: continuous, set by the master at any time (causality input);
+ * CALCULATED: continuous, derived; DISCRETE: changes only at events;
+ * CALCULATED_PARAMETER: derived from parameters while initializing, fixed
+ * after (causality calculatedParameter: an unknown of Initialization Mode only). */
+typedef enum {
+    KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT, KIND_CALCULATED_PARAMETER
+} VariableKind;
+
+/* Value references, in the order of config.h's list and modelDescription.xml. */
+#define MODEL_VR_ENUM(id, ...) VR_##id,
+typedef enum { MODEL_VARIABLES(MODEL_VR_ENUM) VR_COUNT } ValueReference;
+#undef MODEL_VR_ENUM
+
+typedef struct {
+    const char *name;
+    VariableType type;
+    VariableKind kind;
+    double min, max; /* allowed range of a settable value, both inclusive */
+} VariableInfo;
+
+/* ------------------------------------------------------------ variables */
+
+/* NULL if vr is not a variable of the model. */
+const VariableInfo *model_variable(unsigned int vr);
+
+/* Parameters, initial states and inputs may be set (instance_check_set says when). */
+bool model_settable(const VariableInfo *info);
+
+/* The start values of every variable: a new model. */
+void model_reset(Model *m);
+
+/* NULL when value is allowed for settable variable vr, else why not. */
+const char *model_check(unsigned int vr, double value);
+
+/* Sets a settable variable (checked before); values travel as double
+ * whatever the variable's type. */
+void model_set(Model *m, unsigned int vr, double value);
+double model_get(Model *m, unsigned int vr);
+
+/* For the models' own files (model_common.c, from config.h's list): a variable's
+ * field written (settable kinds only) and read, and the range check every
+ * settable variable gets (NULL if value is finite and within [min, max]).
+ * A model's Model has the fields x[MODEL_NX], dx[MODEL_NX], stale and partials_stale; model_update computes what it derives
+ * (dx, z, outputs) when stale; model_touch marks it stale: whatever changed,
+ * the derived values follow it when next asked for. */
+void model_update(Model *m);
+void model_touch(Model *m);
+void model_assign(Model *m, unsigned int vr, double value);
+double model_stored(const Model *m, unsigned int vr);
+const char *model_check_range(unsigned int vr, double value);
+
+/* The model becomes `saved` (an FMU state restored). */
+void model_restore(Model *m, const Model *saved);
+
+/* ---------------------------------------------------- continuous states */
+
+/* The value reference of continuous state i (for messages and checks). */
+unsigned int model_state_vr(size_t i);
+
+void model_get_states(const Model *m, double x[MODEL_NX]);
+void model_set_states(Model *m, const double x[MODEL_NX]);
+void model_get_derivatives(Model *m, double dx[MODEL_NX]);
+void model_get_indicators(Model *m, double z[]);
+void model_get_nominals(const Model *m, double nominal[MODEL_NX]);
+
+/* Input vr was set at `time` (after model_set). True if the set changed the
+ * model's trajectory beyond the value itself (a Co-Simulation step must then
+ * restart its integrator), as when an input starts a new interpolation. */
+bool model_input_set(Model *m, unsigned int vr, double time);
+
+/* A Co-Simulation step begins at `time`: a model whose inputs it interpolates
+ * between communication points starts doing so. (Model Exchange never calls it:
+ * there the master gives the inputs at every time.) */
+void model_step_begin(Model *m, double time);
+
+/* The time the getters above evaluate at (the instance's; a model driven by
+ * time, such as a harmonic force, needs it; an autonomous one ignores it). */
+void model_set_time(Model *m, double time);
+
+/* The current mode's right-hand side, indicators and d der(x)/d x at a trial
+ * time and state x, for an embedded integrator; the model is not changed.
+ * (Indicator arrays are [] : a model may have none.) */
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX]);
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[]);
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
+
+/* ------------------------------------------------------- modes, events */
+
+/* The initial mode, decided from the state alone (initialization mode). */
+void model_decide_initial_mode(Model *m);
+
+/* Initialization ends at `time`: the initial mode, the event record reset;
+ * `text` says what the model starts in (for the event log). */
+void model_start(Model *m, double time, char *text, size_t size);
+
+/* Integration (re)starts from the current state (the event log's reference). */
+void model_begin_integration(Model *m);
+
+/* The event update at `time`: new modes iterated to a fixpoint, the state
+ * moved off every switching surface, the switch recorded. False, with the
+ * reason in e->text, if the modes do not settle or too many events fall on
+ * one instant (a Zeno run). */
+bool model_event_update(Model *m, double time, ModelEvent *e);
+
+/* ------------------------------------------------ partial derivatives */
+
+/* d unknown / d known of the current mode's smooth branch, analytic. Unknowns
+ * are Reals (a state, input or parameter is its own identity, a discrete output
+ * is frozen between events), knowns states, inputs and parameters. NULL on
+ * success, else why the pair has none. (model_common.c; it asks the model for
+ * the rest, model_calculated_partial.) */
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value);
+
+/* The model's own part of model_partial_derivative: d unknown / d known for a
+ * calculated unknown (not a settable or discrete variable) and a settable known. */
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value);
+
+/* ------------------------------------------------------ FMU state fields */
+
+/* What an FMU state holds of the model, by name: every parameter, state and
+ * discrete variable, then the internals of config.h. */
+typedef struct {
+    const char *name;
+    size_t offset; /* in Model */
+    VariableType type;
+} ModelField;
+
+extern const ModelField model_fields[];
+extern const size_t model_n_fields;
+
+/* NULL if m (restored from bytes) holds values this model can have, else
+ * the name of the first field that does not: every settable variable passes
+ * model_check (model_common.c), then the model's own part, model_internals_implausible. */
+const char *model_implausible(const Model *m);
+
+/* The model's own part of model_implausible: NULL if the data beyond its settable
+ * variables (config.h's internals, its mode) hold values it can have, else a name. */
+const char *model_internals_implausible(const Model *m);
+
+#endif

@@ -1,0 +1,137 @@
+/* What every model shares, made once from its config.h: the table of its
+ * variables (MODEL_VARIABLES), a variable's field read and written, the fields
+ * an FMU state holds, the accessors of the states and of what the model
+ * derives from them (model.h: the Model's x, dx, stale, partials_stale and its
+ * model_update), and the partial derivatives every model has. */
+#include "model.h"
+
+#include <math.h>
+#include <string.h>
+
+#define MODEL_INFO(id, name, type, kind, field, min, max) [VR_##id] = { name, TYPE_##type, KIND_##kind, min, max },
+static const VariableInfo VARIABLES[VR_COUNT] = { MODEL_VARIABLES(MODEL_INFO) };
+#undef MODEL_INFO
+
+const VariableInfo *model_variable(unsigned int vr)
+{
+    return vr < VR_COUNT ? &VARIABLES[vr] : NULL;
+}
+
+bool model_settable(const VariableInfo *info)
+{
+    return info->kind == KIND_PARAMETER || info->kind == KIND_STATE || info->kind == KIND_INPUT;
+}
+
+/* Only settable kinds are written: the others' fields may be int or bool. */
+#define ASSIGN_PARAMETER(lvalue, value) (lvalue) = (value)
+#define ASSIGN_STATE ASSIGN_PARAMETER
+#define ASSIGN_INPUT ASSIGN_PARAMETER
+#define ASSIGN_CALCULATED(lvalue, value) (void)(value)
+#define ASSIGN_DISCRETE ASSIGN_CALCULATED
+#define ASSIGN_CALCULATED_PARAMETER ASSIGN_CALCULATED
+#define MODEL_ASSIGN(id, name, type, kind, field, min, max) case VR_##id: ASSIGN_##kind(m->field, value); break;
+#define MODEL_READ(id, name, type, kind, field, min, max) case VR_##id: return (double)m->field;
+
+void model_assign(Model *m, unsigned int vr, double value)
+{
+    switch (vr) { MODEL_VARIABLES(MODEL_ASSIGN) default: break; }
+}
+
+double model_stored(const Model *m, unsigned int vr)
+{
+    switch (vr) { MODEL_VARIABLES(MODEL_READ) default: return NAN; }
+}
+
+const char *model_check_range(unsigned int vr, double value)
+{
+    const VariableInfo *info = model_variable(vr);
+    if (!isfinite(value)) return "must be finite";
+    if (value < info->min || value > info->max) return "is out of range";
+    return NULL;
+}
+
+/* An FMU state holds what is set or changes at events; calculated values follow from it. */
+#define FIELD_PARAMETER(id, name, type, field) { name, offsetof(Model, field), TYPE_##type },
+#define FIELD_STATE FIELD_PARAMETER
+#define FIELD_INPUT FIELD_PARAMETER
+#define FIELD_DISCRETE FIELD_PARAMETER
+#define FIELD_CALCULATED(id, name, type, field)
+#define FIELD_CALCULATED_PARAMETER FIELD_CALCULATED
+#define MODEL_FIELD(id, name, type, kind, field, min, max) FIELD_##kind(id, name, type, field)
+#define INTERNAL_FIELD(name, field, type) { name, offsetof(Model, field), TYPE_##type },
+const ModelField model_fields[] = { MODEL_VARIABLES(MODEL_FIELD) MODEL_INTERNALS(INTERNAL_FIELD) };
+const size_t model_n_fields = sizeof model_fields / sizeof model_fields[0];
+
+/* ----------------------------------------------------- states, derived values */
+
+void model_touch(Model *m)
+{
+    m->stale = m->partials_stale = true;
+}
+
+void model_set(Model *m, unsigned int vr, double value)
+{
+    model_assign(m, vr, value);
+    model_touch(m);
+}
+
+void model_restore(Model *m, const Model *saved)
+{
+    *m = *saved;
+    model_touch(m);
+}
+
+double model_get(Model *m, unsigned int vr)
+{
+    model_update(m);
+    return model_stored(m, vr);
+}
+
+unsigned int model_state_vr(size_t i)
+{
+    for (unsigned int vr = 0; vr < VR_COUNT; ++vr)
+        if (VARIABLES[vr].kind == KIND_STATE && i-- == 0) return vr;
+    return VR_COUNT;
+}
+
+void model_get_states(const Model *m, double x[MODEL_NX])
+{
+    memcpy(x, m->x, sizeof m->x);
+}
+
+void model_set_states(Model *m, const double x[MODEL_NX])
+{
+    memcpy(m->x, x, sizeof m->x);
+    model_touch(m);
+}
+
+void model_get_derivatives(Model *m, double dx[MODEL_NX])
+{
+    model_update(m);
+    memcpy(dx, m->dx, sizeof m->dx);
+}
+
+/* ------------------------------------------------------ FMU state fields */
+
+const char *model_implausible(const Model *m)
+{
+    for (unsigned int vr = 0; vr < VR_COUNT; ++vr) {
+        const VariableInfo *info = model_variable(vr);
+        if (model_settable(info) && model_check(vr, model_stored(m, vr))) return info->name;
+    }
+    return model_internals_implausible(m);
+}
+
+/* ------------------------------------------------------ partial derivatives */
+
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
+    const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
+    if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
+    if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
+    if (model_settable(u) || u->kind == KIND_DISCRETE) {     /* a known itself, or frozen between events */
+        *value = unknown == known;
+        return NULL;
+    }
+    return model_calculated_partial(m, unknown, known, value);
+}

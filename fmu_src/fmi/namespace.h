@@ -1,0 +1,119 @@
+/* The sources' external names, prefixed like the FMI functions when the FMU
+ * is compiled with FMI2_FUNCTION_PREFIX or FMI3_FUNCTION_PREFIX (e.g.
+ * -DFMI2_FUNCTION_PREFIX=PainleveRod_):
+ * so the sources can be linked statically into one program beside another
+ * FMU, or beside a copy of themselves with another prefix. Every function or
+ * object that one source file gives another is listed here
+ * (tests/test_source_fmu.py checks that the prefixed build exports no other). */
+#ifndef NAMESPACE_H
+#define NAMESPACE_H
+
+#if defined(FMI2_FUNCTION_PREFIX)
+#define NAMESPACE_PREFIX FMI2_FUNCTION_PREFIX
+#elif defined(FMI3_FUNCTION_PREFIX)
+#define NAMESPACE_PREFIX FMI3_FUNCTION_PREFIX
+#endif
+
+#ifdef NAMESPACE_PREFIX
+#define NAMESPACE_PASTE_(a, b) a##b
+#define NAMESPACE_PASTE(a, b) NAMESPACE_PASTE_(a, b)
+#define NAMESPACED(name) NAMESPACE_PASTE(NAMESPACE_PREFIX, name)
+
+/* rod.c, rod_partials.c: the physics */
+#define rod_coeffs NAMESPACED(rod_coeffs)
+#define rod_decide_mode NAMESPACED(rod_decide_mode)
+#define rod_derivatives NAMESPACED(rod_derivatives)
+#define rod_energy NAMESPACED(rod_energy)
+#define rod_event_indicators NAMESPACED(rod_event_indicators)
+#define rod_event_update NAMESPACED(rod_event_update)
+#define rod_force_bracket NAMESPACED(rod_force_bracket)
+#define rod_compliance NAMESPACED(rod_compliance)
+#define rod_spring_energy NAMESPACED(rod_spring_energy)
+#define rod_friction_force NAMESPACED(rod_friction_force)
+#define rod_indicator_name NAMESPACED(rod_indicator_name)
+#define rod_jacobian NAMESPACED(rod_jacobian)
+#define rod_move_off_surfaces NAMESPACED(rod_move_off_surfaces)
+#define rod_nominals NAMESPACED(rod_nominals)
+#define rod_normal_force NAMESPACED(rod_normal_force)
+#define rod_partials NAMESPACED(rod_partials)
+
+/* models/PainleveRodSI/rod_si_partials.c (below fmu_src) */
+#define si_partial NAMESPACED(si_partial)
+
+/* rod_record.c: the event iteration of a rod model */
+#define rod_initial_mode NAMESPACED(rod_initial_mode)
+#define rod_record_describe_start NAMESPACED(rod_record_describe_start)
+#define rod_record_event NAMESPACED(rod_record_event)
+#define rod_record_implausible NAMESPACED(rod_record_implausible)
+#define rod_record_new NAMESPACED(rod_record_new)
+#define rod_record_start NAMESPACED(rod_record_start)
+
+/* model.c: the model interface */
+#define model_assign NAMESPACED(model_assign)
+#define model_begin_integration NAMESPACED(model_begin_integration)
+#define model_calculated_partial NAMESPACED(model_calculated_partial)
+#define model_check_range NAMESPACED(model_check_range)
+#define model_check NAMESPACED(model_check)
+#define model_decide_initial_mode NAMESPACED(model_decide_initial_mode)
+#define model_derivatives_at NAMESPACED(model_derivatives_at)
+#define model_event_update NAMESPACED(model_event_update)
+#define model_fields NAMESPACED(model_fields)
+#define model_get NAMESPACED(model_get)
+#define model_get_derivatives NAMESPACED(model_get_derivatives)
+#define model_get_indicators NAMESPACED(model_get_indicators)
+#define model_get_nominals NAMESPACED(model_get_nominals)
+#define model_get_states NAMESPACED(model_get_states)
+#define model_implausible NAMESPACED(model_implausible)
+#define model_internals_implausible NAMESPACED(model_internals_implausible)
+#define model_input_set NAMESPACED(model_input_set)
+#define model_indicators_at NAMESPACED(model_indicators_at)
+#define model_jacobian_at NAMESPACED(model_jacobian_at)
+#define model_n_fields NAMESPACED(model_n_fields)
+#define model_partial_derivative NAMESPACED(model_partial_derivative)
+#define model_reset NAMESPACED(model_reset)
+#define model_restore NAMESPACED(model_restore)
+#define model_set NAMESPACED(model_set)
+#define model_set_states NAMESPACED(model_set_states)
+#define model_set_time NAMESPACED(model_set_time)
+#define model_settable NAMESPACED(model_settable)
+#define model_start NAMESPACED(model_start)
+#define model_state_vr NAMESPACED(model_state_vr)
+#define model_step_begin NAMESPACED(model_step_begin)
+#define model_stored NAMESPACED(model_stored)
+#define model_touch NAMESPACED(model_touch)
+#define model_update NAMESPACED(model_update)
+#define model_variable NAMESPACED(model_variable)
+
+/* instance.c, instance_state.c, instance_step.c: the instance under any FMI version */
+#define instance_check_set NAMESPACED(instance_check_set)
+#define instance_set NAMESPACED(instance_set)
+#define instance_derivatives NAMESPACED(instance_derivatives)
+#define instance_discard NAMESPACED(instance_discard)
+#define instance_event_update NAMESPACED(instance_event_update)
+#define instance_fail NAMESPACED(instance_fail)
+#define instance_free_solver NAMESPACED(instance_free_solver)
+#define instance_get NAMESPACED(instance_get)
+#define instance_log_categories NAMESPACED(instance_log_categories)
+#define instance_log_event NAMESPACED(instance_log_event)
+#define instance_model NAMESPACED(instance_model)
+#define instance_read_array NAMESPACED(instance_read_array)
+#define instance_reset NAMESPACED(instance_reset)
+#define instance_set_logging NAMESPACED(instance_set_logging)
+#define instance_set_states NAMESPACED(instance_set_states)
+#define instance_snapshot_deserialize NAMESPACED(instance_snapshot_deserialize)
+#define instance_snapshot_restore NAMESPACED(instance_snapshot_restore)
+#define instance_snapshot_serialize NAMESPACED(instance_snapshot_serialize)
+#define instance_snapshot_size NAMESPACED(instance_snapshot_size)
+#define instance_snapshot_take NAMESPACED(instance_snapshot_take)
+#define instance_start NAMESPACED(instance_start)
+#define instance_step NAMESPACED(instance_step)
+#define instance_state_name NAMESPACED(instance_state_name)
+
+/* cosim.c: Co-Simulation's integrator */
+#define cosim_advance NAMESPACED(cosim_advance)
+#define cosim_free NAMESPACED(cosim_free)
+#define cosim_new NAMESPACED(cosim_new)
+#define cosim_start NAMESPACED(cosim_start)
+#endif
+
+#endif

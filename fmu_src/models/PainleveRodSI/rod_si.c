@@ -1,0 +1,262 @@
+/* PainleveRodSI on the model interface (model.h): the rod of rod.c in SI
+ * units, driven by a moving floor and applied loads (docs/si_model.md).
+ *
+ * The model keeps SI states: the contact end (x, y), its velocity (v, w), theta
+ * and phi. Everything physical is evaluated by rod.c on the paper's
+ * dimensionless rod in the floor's frame: with the length l, the time
+ * T = sqrt(l/g), the speed U = sqrt(g l) and the force m g,
+ *   xs = (x/l, (v - v_floor)/U, (y - y_floor)/l, (w - w_floor)/U, theta, phi T),
+ *   alpha = m l^2/J, epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k),
+ *   loads f_x = F_x/(m g), f_y = F_y/(m g), tau/(m g l).
+ * The floor moves vertically with the inputs y_floor, w_floor (in
+ * Co-Simulation, between the instants the master sets y_floor, on at w_floor
+ * from where it put it: a first-order hold, so a step sees a floor that moves,
+ * not a staircase) and horizontally at the belt speed v_floor, piecewise
+ * constant (a jump is an event), so the
+ * floor's frame is inertial horizontally: v' = g v_s' and, sticking, v = v_floor
+ * exactly. Vertically the floor enters only through the gap and the relative
+ * velocity of the contact law, so w' = g w_s' whatever the floor's acceleration. */
+#include "model.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "model_dependencies.h"
+#include "rod_si_partials.h"
+#include "si_floor.h"
+
+/* ------------------------------------------------------------ scaling */
+
+typedef struct {
+    double scale[ROD_NX];  /* x_j = offset_j + scale_j xs_j */
+    double offset[ROD_NX];
+    double rate[ROD_NX];   /* der(x_j) = rate_j der(xs_j) for v, w, phi: g, g, g/l */
+} Scaling;
+
+/* The floor's height at `time`: y_floor, moved on at w_floor since it was set. */
+static double floor_height(const Model *m, double time)
+{
+    return m->y_floor + m->w_floor * si_floor_elapsed(m, time);
+}
+
+static Scaling scaling(const Model *m, double time)
+{
+    const double U = sqrt(m->g * m->l), per_T = sqrt(m->g / m->l);
+    return (Scaling){ .scale = { m->l, U, m->l, U, 1, per_T },
+                      .offset = { 0, m->v_floor, floor_height(m, time), m->w_floor, 0, 0 },
+                      .rate = { 0, m->g, 0, m->g, 0, m->g / m->l } };
+}
+
+static RodParams rod_params(const Model *m)
+{
+    const double mg = m->m * m->g;
+    return (RodParams){ .alpha = m->m * m->l * m->l / m->J, .mu = m->mu, .delta = m->c / sqrt(m->m * m->k),
+                        .epsilon = sqrt(mg / (m->k * m->l)), .kappa = 0, .beta = 0,
+                        .f_x = m->F_x / mg, .f_y = m->F_y / mg, .tau = m->tau / (mg * m->l) };
+}
+
+/* The rod's view of an SI state x: the scaling, the rod's parameters and the scaled state. */
+typedef struct {
+    Scaling s;
+    RodParams p;
+    double xs[ROD_NX];
+} RodView;
+
+static RodView rod_view(const Model *m, double time, const double x[ROD_NX])
+{
+    RodView v = { .s = scaling(m, time), .p = rod_params(m) };
+    for (int j = 0; j < ROD_NX; ++j) v.xs[j] = (x[j] - v.s.offset[j]) / v.s.scale[j];
+    return v;
+}
+
+/* The SI right-hand side from the rod's: der(x) = v, der(y) = w, der(theta) = phi
+ * in the ground's frame, accelerations scaled. */
+static void derivatives(const Model *m, const RodView *r, const double x[ROD_NX], double dx[ROD_NX])
+{
+    double dxs[ROD_NX];
+    rod_derivatives(&r->p, m->run.mode, r->xs, dxs);
+    dx[ROD_X] = x[ROD_V];
+    dx[ROD_Y] = x[ROD_W];
+    dx[ROD_THETA] = x[ROD_PHI];
+    for (int j = ROD_V; j <= ROD_PHI; j += 2) dx[j] = r->s.rate[j] * dxs[j];
+}
+
+/* ------------------------------------------------------------ variables */
+
+void model_reset(Model *m)
+{
+    /* A uniform rod of 1 kg and 1 m (alpha = 3) on a stiff, damped floor with mu = 3:
+     * epsilon ~ 1e-3, delta ~ 1, the paper's Theorem 1 regime. */
+    *m = (Model){ .m = 1, .l = 0.5, .J = 1.0 / 12, .g = 9.81, .k = 2e7, .c = 4500, .mu = 3,
+                  .x = { [ROD_X] = 0, [ROD_V] = 2, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 2 },
+                  .run = rod_record_new(),
+                  .stale = true,
+                  .partials_stale = true };
+}
+
+const char *model_check(unsigned int vr, double value)
+{
+    return model_check_range(vr, value);
+}
+
+/* Mechanical energy in the ground's frame plus the contact spring's while it
+ * pushes: 1/2 m |V_cm|^2 + 1/2 J phi^2 + m g y_cm + 1/2 k gap^2. */
+static void outputs(Model *m)
+{
+    const double *x = m->x, l = m->l, sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), phi = x[ROD_PHI];
+    const double mg = m->m * m->g, gap = x[ROD_Y] - floor_height(m, m->time);
+    double *out = m->out;
+    out[SI_F_N] = mg * rod_normal_force(&m->rod, m->run.mode, m->xs);
+    out[SI_F_T] = mg * rod_friction_force(&m->rod, m->run.mode, m->xs);
+    out[SI_X_CM] = x[ROD_X] - l * cs;
+    out[SI_Y_CM] = x[ROD_Y] + l * sn;
+    out[SI_VX_CM] = x[ROD_V] + l * phi * sn;
+    out[SI_VY_CM] = x[ROD_W] + l * phi * cs;
+    out[SI_GAP] = gap;
+    out[SI_SLIP] = x[ROD_V] - m->v_floor;
+    const double spring = m->run.mode.contact ? 0.5 * m->k * gap * gap : 0.0;
+    out[SI_ENERGY] = 0.5 * m->m * (out[SI_VX_CM] * out[SI_VX_CM] + out[SI_VY_CM] * out[SI_VY_CM]) +
+                     0.5 * m->J * phi * phi + mg * out[SI_Y_CM] + spring;
+}
+
+void model_update(Model *m)
+{
+    if (!m->stale) return;
+    const RodView r = rod_view(m, m->time, m->x);
+    m->rod = r.p;
+    memcpy(m->xs, r.xs, sizeof m->xs);
+    derivatives(m, &r, m->x, m->dx);
+    rod_event_indicators(&m->rod, m->run.mode, m->xs, m->z);
+    outputs(m);
+    m->stale = false;
+}
+
+void model_get_indicators(Model *m, double z[])
+{
+    model_update(m);
+    memcpy(z, m->z, sizeof m->z);
+}
+
+void model_get_nominals(const Model *m, double nominal[MODEL_NX])
+{
+    const RodView r = rod_view(m, m->time, m->x);
+    rod_nominals(&r.p, nominal);
+    for (int j = 0; j < ROD_NX; ++j) nominal[j] *= r.s.scale[j];
+}
+
+void model_set_time(Model *m, double time)
+{
+    if (time == m->time) return;
+    m->time = time;
+    if (m->floor_moves && m->w_floor != 0) model_touch(m);   /* the floor has moved */
+}
+
+/* Setting y_floor puts the floor there now; a moving floor then jumps back to it. */
+bool model_input_set(Model *m, unsigned int vr, double time)
+{
+    if (vr != VR_Y_FLOOR) return false;
+    const bool moved = si_floor_elapsed(m, time) != 0 && m->w_floor != 0;
+    m->t_floor = time;
+    model_touch(m);
+    return moved;
+}
+
+void model_step_begin(Model *m, double time)
+{
+    (void)time;
+    m->floor_moves = true;
+    model_touch(m);
+}
+
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
+{
+    const RodView r = rod_view(m, time, x);
+    derivatives(m, &r, x, dx);
+}
+
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
+{
+    const RodView r = rod_view(m, time, x);
+    rod_event_indicators(&r.p, m->run.mode, r.xs, z);
+}
+
+/* d der(x_i)/d x_j = rate_i J_s[i][j]/scale_j for the accelerations (v, w, phi:
+ * the odd rows); the kinematic rows der(x) = v, der(y) = w, der(theta) = phi. */
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
+{
+    const RodView r = rod_view(m, time, x);
+    rod_jacobian(&r.p, m->run.mode, r.xs, J);
+    for (int i = 0; i < ROD_NX; ++i)
+        for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? r.s.rate[i] * J[i][j] / r.s.scale[j] : 0);
+    J[ROD_X][ROD_V] = J[ROD_Y][ROD_W] = J[ROD_THETA][ROD_PHI] = 1;
+}
+
+/* ------------------------------------------------------- modes, events */
+
+void model_decide_initial_mode(Model *m)
+{
+    model_update(m);
+    m->run.mode = rod_initial_mode(&m->rod, m->xs);
+    model_touch(m);
+}
+
+void model_start(Model *m, double time, char *text, size_t size)
+{
+    model_update(m);
+    rod_record_start(&m->run, &m->rod, m->xs, time);
+    m->v_floor_decided = m->v_floor;
+    m->time = m->t_floor = time;   /* the floor is where y_floor says at the start */
+    model_touch(m);
+    rod_record_describe_start(&m->run, text, size);
+}
+
+void model_begin_integration(Model *m)
+{
+    model_update(m);
+    memcpy(m->run.z_at_restart, m->z, sizeof m->z);
+}
+
+bool model_event_update(Model *m, double time, ModelEvent *e)
+{
+    model_update(m);
+    const Scaling s = scaling(m, m->time);
+    double xs[ROD_NX];
+    memcpy(xs, m->xs, sizeof xs);
+    /* A belt that changed speed leaves the rod's own velocity as it was. */
+    const bool belt_jumped = m->v_floor != m->v_floor_decided;
+    m->v_floor_decided = m->v_floor;
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, e);
+    /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
+    for (int j = 0; j < ROD_NX; ++j)
+        if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
+    model_touch(m);
+    return ok;
+}
+
+/* ------------------------------------------------ partial derivatives */
+
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
+    /* A pair the model description does not declare is 0 by the structure of the
+     * equations; the chain rule below would give round-off there. */
+    if (!model_depends(unknown, known)) {
+        *value = 0;
+        return NULL;
+    }
+    model_update(m);
+    if (m->partials_stale) {
+        rod_partials(&m->rod, m->run.mode, m->xs, &m->partials);
+        m->partials_stale = false;
+    }
+    *value = si_partial(m, unknown, known);
+    return NULL;
+}
+
+/* ------------------------------------------------------ FMU state fields */
+
+const char *model_internals_implausible(const Model *m)
+{
+    if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
+    if (!isfinite(m->t_floor) || !isfinite(m->time)) return "t_floor";
+    return rod_record_implausible(&m->run);
+}

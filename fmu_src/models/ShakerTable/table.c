@@ -1,0 +1,196 @@
+/* ShakerTable on the model interface (fmu_src/fmi/model.h): a linear, time-driven
+ * oscillator with no modes and no events,
+ *     z' = v,   M v' = -K z - C v + F0 sin(2 pi frequency t) - F_N.
+ * Knows the table, not FMI. */
+#include "model.h"
+
+#include <math.h>
+#include <stdio.h>
+
+/* 2 pi (C99 has no M_PI): the drive's angular frequency is TWO_PI * frequency. */
+#define TWO_PI 6.283185307179586476925286766559
+
+/* ------------------------------------------------------------ variables */
+
+/* The variable table, field access, states and the FMU state's fields are
+ * model_common.c's, from config.h's list. */
+
+void model_reset(Model *m)
+{
+    /* A 10 kg top on 40 kN/m (10.07 Hz, damping ratio 0.032), shaken at 5 Hz. */
+    *m = (Model){ .params = { .M = 10, .K = 4e4, .C = 40, .F0 = 50, .frequency = 5, .belt_speed = 0 },
+                  .stale = true,
+                  .partials_stale = true };
+}
+
+const char *model_check(unsigned int vr, double value)
+{
+    return model_check_range(vr, value);
+}
+
+/* The physics at a time and state: the drive force and the accelerations. */
+static double drive(const TableParams *p, double time)
+{
+    return p->F0 * sin(TWO_PI * p->frequency * time);
+}
+
+static void derivatives(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
+{
+    const TableParams *p = &m->params;
+    dx[TABLE_Z] = x[TABLE_V];
+    dx[TABLE_V] = (-p->K * x[TABLE_Z] - p->C * x[TABLE_V] + drive(p, time) - m->F_N) / p->M;
+}
+
+void model_update(Model *m)
+{
+    if (!m->stale) return;
+    const TableParams *p = &m->params;
+    derivatives(m, m->time, m->x, m->dx);
+    m->out[TABLE_OUT_DRIVE] = drive(p, m->time);
+    /* Kinetic and spring energy about the static equilibrium (gravity's share is in it). */
+    m->out[TABLE_OUT_ENERGY] = 0.5 * p->M * m->x[TABLE_V] * m->x[TABLE_V] + 0.5 * p->K * m->x[TABLE_Z] * m->x[TABLE_Z];
+    /* The surface takes +F_T along x (the paper's sign): holding belt_speed, the drive does -F_T belt_speed. */
+    m->out[TABLE_OUT_BELT_POWER] = -m->F_T * p->belt_speed;
+    m->stale = false;
+}
+
+/* ---------------------------------------------------- continuous states */
+
+void model_get_indicators(Model *m, double z[])
+{
+    (void)m, (void)z;   /* none */
+}
+
+void model_get_nominals(const Model *m, double nominal[MODEL_NX])
+{
+    /* modelDescription.xml's nominals: a table shaken by some mm at some Hz
+     * (the defaults: 1.66 mm, 0.05 m/s); CVODE's absolute tolerance is
+     * rtol times these. */
+    (void)m;
+    nominal[TABLE_Z] = 1e-4;
+    nominal[TABLE_V] = 1e-2;
+}
+
+bool model_input_set(Model *m, unsigned int vr, double time)
+{
+    (void)m, (void)vr, (void)time;   /* the loads are held as set */
+    return false;
+}
+
+void model_step_begin(Model *m, double time)
+{
+    (void)m, (void)time;
+}
+
+void model_set_time(Model *m, double time)
+{
+    if (time == m->time) return;
+    m->time = time;
+    model_touch(m);
+}
+
+void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
+{
+    derivatives(m, time, x, dx);
+}
+
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
+{
+    (void)m, (void)time, (void)x, (void)z;   /* none */
+}
+
+void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
+{
+    (void)time, (void)x;
+    const TableParams *p = &m->params;
+    J[TABLE_Z][TABLE_Z] = 0;
+    J[TABLE_Z][TABLE_V] = 1;
+    J[TABLE_V][TABLE_Z] = -p->K / p->M;
+    J[TABLE_V][TABLE_V] = -p->C / p->M;
+}
+
+/* ------------------------------------------------------- modes, events */
+
+void model_decide_initial_mode(Model *m)
+{
+    (void)m;   /* no modes */
+}
+
+void model_start(Model *m, double time, char *text, size_t size)
+{
+    (void)time;   /* no modes, no event record */
+    snprintf(text, size, "table starts at position = %g m, velocity = %g m/s (no modes)", m->x[TABLE_Z],
+             m->x[TABLE_V]);
+}
+
+void model_begin_integration(Model *m)
+{
+    (void)m;   /* no event log to refer to */
+}
+
+/* The table never switches: an event (an input that jumped) changes nothing
+ * of its own, and integration restarts from the same state. */
+bool model_event_update(Model *m, double time, ModelEvent *e)
+{
+    (void)m;
+    e->states_changed = e->switched = false;
+    snprintf(e->text, sizeof e->text, "t = %.17g: no modes to update", time);
+    return true;
+}
+
+/* ------------------------------------------------ partial derivatives */
+
+/* d der(velocity) / d known: the acceleration a = (-K z - C v + F0 s - F_N) / M
+ * with s = sin(2 pi f t). */
+static double acceleration_partial(const Model *m, unsigned int known)
+{
+    const TableParams *p = &m->params;
+    const double omega = TWO_PI * p->frequency, t = m->time;
+    switch (known) {
+    case VR_POSITION: return -p->K / p->M;
+    case VR_VELOCITY: return -p->C / p->M;
+    case VR_F_N: return -1 / p->M;
+    case VR_M: return -m->dx[TABLE_V] / p->M;
+    case VR_K: return -m->x[TABLE_Z] / p->M;
+    case VR_C: return -m->x[TABLE_V] / p->M;
+    case VR_F0: return sin(omega * t) / p->M;
+    case VR_FREQUENCY: return p->F0 * cos(omega * t) * TWO_PI * t / p->M;
+    default: return 0;   /* F_T, belt_speed */
+    }
+}
+
+const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
+    model_update(m);
+    const TableParams *p = &m->params;
+    const double omega = TWO_PI * p->frequency, t = m->time;
+    const double z = m->x[TABLE_Z], v = m->x[TABLE_V];
+    double d = 0;
+    switch (unknown) {
+    case VR_DER_POSITION: d = known == VR_VELOCITY; break;
+    case VR_DER_VELOCITY: d = acceleration_partial(m, known); break;
+    case VR_BELT_VELOCITY: d = known == VR_BELT_SPEED; break;
+    case VR_DRIVE_FORCE:
+        d = known == VR_F0 ? sin(omega * t) : known == VR_FREQUENCY ? p->F0 * cos(omega * t) * TWO_PI * t : 0;
+        break;
+    case VR_ENERGY:
+        d = known == VR_POSITION ? p->K * z
+            : known == VR_VELOCITY ? p->M * v
+            : known == VR_M ? 0.5 * v * v
+            : known == VR_K ? 0.5 * z * z
+            : 0;
+        break;
+    case VR_BELT_POWER: d = known == VR_F_T ? -p->belt_speed : known == VR_BELT_SPEED ? -m->F_T : 0; break;
+    default: return "the unknown has no partial derivative";
+    }
+    *value = d;
+    return NULL;
+}
+
+/* ------------------------------------------------------ FMU state fields */
+
+const char *model_internals_implausible(const Model *m)
+{
+    (void)m; /* no internals */
+    return NULL;
+}

@@ -1,0 +1,113 @@
+/* The compliant Painleve rod of Hogan & Kristiansen: physics only, no FMI.
+ *
+ * States, derivatives, event indicators and the mode logic of docs/model.md §1-2.
+ * Every function is pure apart from rod_event_update, which may move the
+ * state off a switching surface; nothing here keeps global state. */
+#ifndef ROD_H
+#define ROD_H
+
+#include <stdbool.h>
+
+#include "namespace.h" /* every source includes this header: their names, prefixed */
+
+/* Continuous states, in the order of modelDescription.xml. */
+enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
+
+/* Event indicators. Slots 2 and 3 change meaning with the mode (see rod.c). */
+enum { ROD_Z_Y, ROD_Z_FORCE, ROD_Z_SLIP, ROD_Z_AUX, ROD_NZ };
+
+/* Algebraic outputs. */
+enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY, ROD_NOUT };
+
+typedef struct {
+    double alpha;   /* m l^2 / I, > 0 */
+    double mu;      /* friction coefficient, >= 0 */
+    double delta;   /* contact damping, >= 0 */
+    double epsilon; /* compliance, > 0: stiffness epsilon^-2 */
+    double kappa;   /* spring stiffening, >= 0: stiffness 1 + 2 kappa d at scaled penetration d */
+    double beta;    /* damping growth, >= 0: damping delta (1 + beta d) (Hunt-Crossley-like) */
+    /* Applied loads, in units of m g and m g l (0 in the paper): a force (f_x, f_y) on the
+     * centre of mass and a torque tau in theta's sense. They enter the paper's a and b
+     * (a += f_x - alpha sin tau, b += f_y - alpha cos tau) and phi' (+= alpha tau). */
+    double f_x, f_y, tau;
+} RodParams;
+
+typedef struct {
+    bool contact; /* compliant force active */
+    int slip;     /* +1 slip forward, 0 stick, -1 slip backward */
+} RodMode;
+
+/* Coefficients of eq coeffs and eq Sw at one (theta, phi). Sticking follows
+ * w' = b + A_w a + S_w F_N, phi' = A_phi a + S_phi F_N (the exact Filippov
+ * field; Proposition lem:Filippov keeps only S_w, S_phi: see rod.c). */
+typedef struct {
+    double a, b;
+    double q_plus, q_minus, p_plus, p_minus, c_plus, c_minus;
+    double S_w, S_phi;
+    double A_w, A_phi;
+} RodCoeffs;
+
+RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
+
+/* The compliance law h(yh, w) of eq hNon in the scaled variables yh = y/eps and w,
+ * with the scaled penetration d = max(-yh, 0):
+ *   h = -yh + kappa d^2 - delta w (1 + beta d),   F_N = h/eps in contact.
+ * Its linearization at the origin is exactly -yh - delta w (eq hLin): kappa = beta = 0
+ * is the paper's linear law. With kappa, beta >= 0, h decreases in yh and (delta > 0)
+ * in w wherever h > 0 and y <= 0 (the paper's d_y f < 0, d_w f < 0). */
+typedef struct {
+    double h;    /* h(yh, w) */
+    double h_yh; /* dh/dyh (the contact side at d = 0) */
+    double h_w;  /* dh/dw */
+} RodCompliance;
+
+RodCompliance rod_compliance(const RodParams *p, double y, double w);
+
+/* h(y/eps, w): the bracket of eq FN (g = -y/eps - delta w for the linear law). */
+double rod_force_bracket(const RodParams *p, const double x[ROD_NX]);
+
+/* Energy held by the contact spring at height y: the integral of its force
+ * -yh + kappa d^2 over the penetration, d^2/2 + kappa d^3/3 with d = -y/eps. */
+double rod_spring_energy(const RodParams *p, double y);
+
+/* F_N of the current mode: smooth (linear) while in contact, 0 otherwise. */
+double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
+
+/* F_T: s mu F_N while slipping, the force that keeps v' = 0 while sticking. */
+double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
+
+/* Mechanical energy plus the spring's while the contact force acts, in units
+ * of m g l. */
+double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX]);
+
+void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
+
+/* J[i][j] = d dx_i / d x_j of the current mode's smooth right-hand side. */
+void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX]);
+
+void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ]);
+
+/* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
+void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
+
+/* The mode the rules of docs/model.md §2 give at state x, coming from mode m.
+ * May set v to exactly 0 (entering or re-deciding stick); says so in *x_changed. */
+RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed);
+
+/* Moves x off every switching surface on which an indicator of mode m is 0
+ * to within `margin` times its rounding error, towards the side mode m lives
+ * on and past that, so that no importer restarts integration on a root.
+ * margin >= 1: 1 at a first event; larger where the importer's solver came
+ * straight back to the surface (its error exceeded the move). Sets *moved if
+ * x changed; returns false if a surface could not be left by a step below the
+ * state's nominal. */
+bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved);
+
+typedef enum { ROD_SETTLED, ROD_PING_PONG, ROD_STUCK_ON_SURFACE } RodEventResult;
+
+/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces with `margin`. */
+RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], double margin, bool *x_changed);
+
+const char *rod_indicator_name(const RodMode m, int i);
+
+#endif
