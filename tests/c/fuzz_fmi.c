@@ -18,8 +18,11 @@
  *
  * tests/c/corpus holds the seeds (seed-*: a simulation with events, FMU
  * state round trips, two instances, logging, Co-Simulation, an error and a
- * reset) and the inputs that once broke an invariant (regress-*; so far all
- * were the target's own false alarms, since fixed), kept as regression cases.
+ * reset) and the inputs that once broke an invariant (regress-*), kept as
+ * regression cases: the first ones the target's own false alarms, since fixed;
+ * regress-*issue23-* calls that never returned (issue 23), written from
+ * readable call sequences by tests/c/corpus_inputs.py. The CI runs are
+ * deterministic: -runs=N -seed=S over the corpus, -timeout per input.
  *
  *   fuzz_fmi CORPUS_DIR... [-runs=N] [-max_total_time=S]   fuzz (libFuzzer flags)
  *   fuzz_fmi FILE...                                         replay inputs */

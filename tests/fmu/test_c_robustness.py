@@ -10,7 +10,10 @@ apart from the robustness checks; valgrind runs both. The FMI 3.0 layer has its
 own driver (tests/c/fmi3_*.c: every fmi3 call in every state to the letter of
 FMI 3.0, derivatives, robustness) and fuzz target (fuzz_fmi3.c), over the same
 instrumented libraries, which export both layers; both fuzz targets replay the
-whole corpus.
+whole corpus. fuzz_bounded (every model; fuzz_bounded3 for FMI 3.0) fuzzes
+whole runs instead: tolerance, start time, step sizes, parameters, states and
+inputs, Model Exchange and Co-Simulation; every call must return with a legal
+status (Discard from a doStep only, the getters answering after it).
 
 Every model gets the FMI 2.0 driver, conformance table and fuzz target:
 PainleveRod (fmu_src/models/PainleveRod, the top-level modelDescription.xml) and
@@ -20,9 +23,15 @@ sources, its tables from that XML); a fmu_src/models/NAME that it does not name
 fails test_every_model_has_its_conformance_checks.
 
 ROBUSTNESS_FMU_SRC=/path/to/fmu_src points the builds at another copy of the
-sources (to check that a planted bug is caught); FUZZ_SECONDS sets the fuzzing
-time (default 45), FUZZ3_SECONDS the FMI 3.0 target's (default 20),
-FUZZ_MODEL_SECONDS each further model's (default 15)."""
+sources (to check that a planted bug is caught).
+
+The fuzz runs are deterministic, so that a red run means a defect and not a
+slow machine: each target replays the whole corpus, then runs a fixed number
+of inputs (FUZZ_RUNS) from a fixed seed (FUZZ_SEED), each input under
+libFuzzer's -timeout (FUZZ_INPUT_TIMEOUT seconds: an input that takes longer
+is a hang, a finding) and -rss_limit_mb. FUZZ_RUNS=N (all targets) or
+FUZZ_RUNS_<target>=N change the counts for a longer run; for a campaign by time
+budget see bench/fuzz_campaign.sh."""
 import os
 import pathlib
 import re
@@ -38,9 +47,11 @@ from conftest import ROOT
 C_TESTS = ROOT / "tests" / "c"
 MODELS_DIR = ROOT / "fmu_src" / "models"
 CORPUS = C_TESTS / "corpus"
-FUZZ_SECONDS = int(os.environ.get("FUZZ_SECONDS", "45"))
-FUZZ3_SECONDS = int(os.environ.get("FUZZ3_SECONDS", "20"))
-FUZZ_MODEL_SECONDS = int(os.environ.get("FUZZ_MODEL_SECONDS", "15"))
+FUZZ_SEED = int(os.environ.get("FUZZ_SEED", "1"))
+# Seconds one input may take: a legal input's calls take milliseconds under the sanitizers,
+# the slowest corpus input well under a second; one past this is a hang.
+FUZZ_INPUT_TIMEOUT = int(os.environ.get("FUZZ_INPUT_TIMEOUT", "10"))
+FUZZ_RSS_LIMIT_MB = 2048
 
 # Each model's suffix of its programs (fmi_driver_asan{suffix}, fmi_driver{suffix}, fuzz_fmi{suffix}).
 MODEL_DIRS = re.findall(r"^add_model_dir_checks\((\w+)\)", (C_TESTS / "CMakeLists.txt").read_text(), re.M)
@@ -171,31 +182,50 @@ def test_instantiate_simulate_free_cycles_keep_memory_flat(build, model):
     assert f"{cycles} instantiate/simulate/free cycles" in output
 
 
-FUZZ_TARGETS = {"fuzz_fmi": FUZZ_SECONDS, "fuzz_fmi3": FUZZ3_SECONDS,
-                **{f"fuzz_fmi{MODELS[name]}": FUZZ_MODEL_SECONDS for name in MODEL_DIRS}}
+# Each target's number of fuzzed inputs in CI: about 15 s each on the 2-core CI machine
+# (1000-2000 inputs a second), the same inputs on every machine.
+FUZZ_RUNS = {"fuzz_fmi": 30000, "fuzz_fmi3": 30000, "fuzz_bounded": 20000, "fuzz_bounded3": 20000,
+             **{f"fuzz_fmi{MODELS[name]}": 20000 for name in MODEL_DIRS},
+             **{f"fuzz_bounded{MODELS[name]}": 15000 for name in MODEL_DIRS}}
 
 
-@pytest.mark.parametrize("target", sorted(FUZZ_TARGETS))
+def fuzz_runs(target):
+    return int(os.environ.get(f"FUZZ_RUNS_{target}", os.environ.get("FUZZ_RUNS", FUZZ_RUNS[target])))
+
+
+def test_fuzz_corpus_files_are_what_corpus_inputs_writes():
+    # The regress-issue* inputs are written from readable call sequences (tests/c/corpus_inputs.py).
+    r = subprocess.run([sys.executable, str(C_TESTS / "corpus_inputs.py"), "--check"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+@pytest.mark.parametrize("target", sorted(FUZZ_RUNS))
 def test_fuzz_seeds_and_regression_inputs_replay_clean(build, target):
+    # Every input of the corpus, each under the input timeout: a regression input that hangs
+    # again is a libFuzzer timeout (red) in FUZZ_INPUT_TIMEOUT seconds.
     inputs = sorted(CORPUS.iterdir())
     assert inputs, f"{CORPUS} is empty"
-    code, output = run([build / target, *inputs], timeout=300)
+    code, output = run([build / target, f"-timeout={FUZZ_INPUT_TIMEOUT}", f"-rss_limit_mb={FUZZ_RSS_LIMIT_MB}",
+                        *inputs], timeout=300)
     assert_clean(code, output, f"{target} on tests/c/corpus")
     assert output.count("Executed ") == len(inputs), output[-3000:]
 
 
-@pytest.mark.parametrize("target", sorted(FUZZ_TARGETS))
+@pytest.mark.parametrize("target", sorted(FUZZ_RUNS))
 def test_fuzzing_finds_nothing(build, tmp_path, target):
-    seconds = FUZZ_TARGETS[target]
+    runs = fuzz_runs(target)
     corpus, artifacts = tmp_path / "corpus", tmp_path / "artifacts"
     corpus.mkdir()
     artifacts.mkdir()
-    # New inputs go to the temporary corpus, the first directory; tests/c/corpus is only read.
+    # New inputs go to the temporary corpus, the first directory; tests/c/corpus is only read,
+    # and replayed whole before the first new input. A fixed seed and number of runs make the
+    # inputs the same on every machine; -timeout makes a hang a finding, not a stuck job.
     # The value profile rewards inputs that come closer to a comparison's other side
     # (a length one past a buffer's end is found in seconds rather than minutes).
-    code, output = run([build / target, "-seed=1", "-use_value_profile=1", f"-max_total_time={seconds}",
-                        "-runs=3000000", "-timeout=10", "-rss_limit_mb=2048", "-print_final_stats=1",
-                        f"-artifact_prefix={artifacts}/", corpus, CORPUS], timeout=seconds + 120)
+    code, output = run([build / target, f"-seed={FUZZ_SEED}", f"-runs={runs}", "-use_value_profile=1",
+                        f"-timeout={FUZZ_INPUT_TIMEOUT}", f"-rss_limit_mb={FUZZ_RSS_LIMIT_MB}",
+                        "-print_final_stats=1", f"-artifact_prefix={artifacts}/", corpus, CORPUS],
+                       timeout=max(600, runs // 50))
     found = sorted(p.name for p in artifacts.iterdir())
     if found:
         keep = ROOT / "build" / "fuzz-findings"
@@ -206,7 +236,9 @@ def test_fuzzing_finds_nothing(build, tmp_path, target):
                    "add it to tests/c/corpus as a regression case.")
     assert_clean(code, output, target)
     assert not found
-    assert "Done " in output
+    assert f"Done {runs} runs" in output, output[-3000:]
+    # the whole corpus was read (libFuzzer's INITED line counts what it kept of it)
+    assert re.search(r"INFO: seed corpus: files: %d " % len(list(CORPUS.iterdir())), output), output[-3000:]
 
 
 def test_every_fmi3_call_in_every_state_answers_as_fmi_3_0_requires(build):
