@@ -301,7 +301,7 @@ static int wanted_side(const RodParams *p, RodMode m, int i, const double x[ROD_
 {
     switch (i) {
     case ROD_Z_Y: return m.contact ? -1 : +1;
-    case ROD_Z_FORCE: return m.contact ? +1 : -1;
+    case ROD_Z_FORCE: return m.contact ? +1 : x[ROD_Y] > 0 ? 0 : -1;   /* above the floor h does not decide */
     case ROD_Z_SLIP: return sticking(m) ? -1 : m.slip;
     case ROD_Z_AUX:
         if (m.contact) return m.slip == 0 ? +1 : 0;
@@ -392,6 +392,7 @@ RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX]
         *m = n;
         if (!same || changed) continue;
         const bool off = rod_move_off_surfaces(p, *m, x, margin, &moved);
+        margin = 1;   /* a later round moves only what the decision moved back onto a surface */
         *x_changed |= moved;
         if (!off) return ROD_STUCK_ON_SURFACE;
         if (!moved) return ROD_SETTLED;
