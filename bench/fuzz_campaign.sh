@@ -41,10 +41,14 @@ for target in "${TARGETS[@]}"; do
     dir=$OUT/$target
     mkdir -p "$dir/corpus" "$dir/findings"
     cp "$ROOT"/tests/c/corpus/* "$dir/corpus/"
-    # the outer timeout only guards against libFuzzer itself not stopping
+    # the outer timeout only guards against libFuzzer itself not stopping; interrupted, the script stops it
     timeout --kill-after=30 $((SECONDS_EACH + 300)) "$C_BUILD/$target" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 \
         -ignore_ooms=1 -max_total_time="$SECONDS_EACH" -timeout="$TIMEOUT" -rss_limit_mb=2048 -use_value_profile=1 \
-        -artifact_prefix="$dir/findings/" -print_final_stats=1 "$dir/corpus" >"$dir/log" 2>&1 || true
+        -artifact_prefix="$dir/findings/" -print_final_stats=1 "$dir/corpus" >"$dir/log" 2>&1 &
+    fuzzer=$!
+    trap 'kill -TERM $fuzzer 2>/dev/null; exit 130' INT TERM
+    wait $fuzzer || true
+    trap - INT TERM
     # fork mode's status lines: "#RUNS: cov: N ft: N corp: N exec/s: N oom/timeout/crash: a/b/c time: Ns ..."
     last=$(grep -E '^#[0-9]+: cov:' "$dir/log" | tail -1 || true)
     runs=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$last")
