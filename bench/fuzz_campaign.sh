@@ -11,7 +11,7 @@
 # With no TARGET: every fuzz target (fuzz_fmi*, fuzz_bounded*). C_BUILD names a
 # build of tests/c to use (default: build/c-robustness, configured and built here
 # with clang, -j 2); OUT the output directory (default: a new /tmp/fuzz-campaign-*).
-# FUZZ_INPUT_TIMEOUT (10 s) is the time one input may take before it counts as a hang.
+# FUZZ_INPUT_TIMEOUT (20 s) is the time one input may take before it counts as a hang.
 set -euo pipefail
 
 if [ $# -lt 1 ] || ! [[ "${!#}" =~ ^[0-9]+$ ]]; then
@@ -23,7 +23,7 @@ TARGETS=("${@:1:$#-1}")
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 C_BUILD=${C_BUILD:-$ROOT/build/c-robustness}
 OUT=${OUT:-$(mktemp -d /tmp/fuzz-campaign-XXXXXX)}
-TIMEOUT=${FUZZ_INPUT_TIMEOUT:-10}
+TIMEOUT=${FUZZ_INPUT_TIMEOUT:-20}
 PYTHON=${PYTHON:-$ROOT/.venv/bin/python}
 [ -x "$PYTHON" ] || PYTHON=python3
 
