@@ -11,7 +11,7 @@ Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
   fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
   fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
   fmpy CS fast loop     painleve Experiment(fmi_type="CoSimulation"): fmi2DoStep, 4 eps apart
-  scipy <method>        painleve.reference (solve_ivp, the same model in Python)
+  scipy <method>        painleve.experiments.reference (solve_ivp, the same model in Python)
   native                bench/native: the FMU's .so under CVODE in C, no Python
 
 All run at the harness's tolerance, rtol = min(1e-6, eps/100), atol = rtol *
@@ -47,11 +47,11 @@ sys.path.insert(0, str(HERE))
 
 import fmpy                                              # noqa: E402
 from native_driver import run_native                     # noqa: E402
-from painleve import reference                           # noqa: E402
-from painleve import analytic as an                      # noqa: E402
-from painleve.case import Case                           # noqa: E402
-from painleve.experiment import OUTPUTS, Experiment      # noqa: E402
-from painleve.outcome import outcome_of_trajectory       # noqa: E402
+from painleve.experiments import reference                           # noqa: E402
+from painleve.theory import analytic as an                      # noqa: E402
+from painleve.experiments.case import Case                           # noqa: E402
+from painleve.fmu.experiment import OUTPUTS, Experiment      # noqa: E402
+from painleve.experiments.outcome import outcome_of_trajectory       # noqa: E402
 
 FMU = ROOT / "build" / "PainleveRod.fmu"
 NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"

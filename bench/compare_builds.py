@@ -9,7 +9,7 @@ import argparse
 import sys
 
 from bench import cases_at
-from painleve.experiment import Experiment
+from painleve.fmu.experiment import Experiment
 
 QUANTITIES = ("w", "phi", "v")
 

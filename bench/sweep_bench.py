@@ -28,8 +28,8 @@ def run(fmu, n, interface="CS"):
 
     from dask.distributed import Client, LocalCluster
 
-    from painleve.sweep import run_sweep
-    from painleve.sweepspec import SweepSpec
+    from painleve.sweep.run import run_sweep
+    from painleve.sweep.spec import SweepSpec
     spec = SweepSpec.from_texts(SPEC, samples=n, seed=7)
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                            silence_logs=logging.ERROR)
@@ -53,7 +53,7 @@ def sweep_table(fmu, n):
         out = subprocess.run([sys.executable, __file__, str(size), str(fmu)], capture_output=True, text=True,
                              check=True)
         results.append(json.loads(out.stdout.strip().splitlines()[-1]))
-    lines = [f"`painleve.sweep.run_sweep` on a local dask cluster, 2 worker processes, random Theorem 1 cases "
+    lines = [f"`painleve.sweep.run.run_sweep` on a local dask cluster, 2 worker processes, random Theorem 1 cases "
              f"{SPEC}, Co-Simulation fast loop; each size in a fresh process.", "",
              "| cases | seconds | cases/s | driver peak MiB | worker peaks MiB |", "|---|---|---|---|---|"]
     for r in results:

@@ -68,6 +68,6 @@ def table_path():
 @pytest.fixture(scope="session")
 def loaded(fmu_path):
     """The built FMU loaded once by the harness (extracted; raw instances from .instantiate)."""
-    from painleve.experiment import Experiment
+    from painleve.fmu.experiment import Experiment
     with Experiment(fmu_path) as experiment:
         yield experiment

@@ -1,0 +1,6 @@
+"""`python -m painleve`: the `painleve` command."""
+import sys
+
+from .cli.main import main
+
+sys.exit(main())

@@ -1,0 +1,33 @@
+"""`painleve figures`: the paper's figures from simulations of the FMU."""
+from .errors import UsageError
+from .fmus import fmu_file
+from .options import dpi_value, fmu_option, output_path
+
+
+def add_parser(sub):
+    fig = sub.add_parser("figures", allow_abbrev=False, help="the paper's figures from simulations of the FMU",
+                         description="Regenerates the paper's figures (GB: the quadrants of the (theta, phi) plane; eDelta0: the coefficient e(0, theta0) and e(delta, theta0); video: two rods, one IWC, one lift-off) from "
+                                     "simulations of the FMU, with the analytic curves beside the simulated "
+                                     "points. Writes PNG files, figures.json (the numbers behind each plot) "
+                                     "and figures.md (how far the points lie from the curves).")
+    fmu_option(fig)
+    fig.add_argument("--out", default="out/figures", metavar="DIR", help="where to write (default %(default)s)")
+    fig.add_argument("--only", metavar="NAMES", help="a comma-separated subset of GB, eDelta0, video, eLaw")
+    fig.add_argument("--dpi", type=dpi_value, default=150, help="PNG resolution, 10 to 1200 (default %(default)s)")
+
+
+def run(args):
+    from ..figures.paper import FIGURES, make_figures
+    only = None
+    if args.only:
+        only = [n.strip() for n in args.only.split(",") if n.strip()]
+        unknown = [n for n in only if n not in FIGURES]
+        if unknown:
+            raise UsageError(f"painleve figures: unknown figure {unknown[0]!r}; --only takes a comma-separated "
+                             f"subset of {', '.join(FIGURES)}")
+    fmu = fmu_file(args.fmu)
+    output_path(args.out, "painleve figures: --out", directory=True)
+    written = make_figures(fmu, args.out, only=only, dpi=args.dpi)
+    for path in written:
+        print(path)
+    return 0

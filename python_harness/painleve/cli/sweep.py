@@ -1,0 +1,106 @@
+"""`painleve sweep`: many IWC cases on dask, written as they finish, resumable."""
+import argparse
+import pathlib
+import re
+import signal
+import textwrap
+
+from .errors import Interrupted, RunError, UsageError, one_line
+from .fmus import fmu_file
+from .options import DEFAULTS, at_least_one, count, fmu_option, interface_option, output_path
+
+
+def add_parser(sub):
+    sw = sub.add_parser("sweep", allow_abbrev=False, help="many IWC cases on dask, written as they finish",
+                        formatter_class=argparse.RawDescriptionHelpFormatter,
+                        description=textwrap.fill(
+                            "Runs a grid or a random sample of IWC cases on dask (a local cluster, or a scheduler "
+                            "by address) and writes one row per case to a CSV or Parquet file as batches finish. "
+                            "Run the same command again to resume an interrupted sweep: finished cases are not "
+                            "recomputed.", 79),
+                        epilog="each parameter takes:\n"
+                               "  1.0            one value\n"
+                               "  0.5,1,1.2      a list (random sample: one of them)\n"
+                               "  lo:hi:n        grid: n values from lo to hi (lo:hi:n:log evenly in log)\n"
+                               "  lo:hi          random sample: uniform (lo:hi:log log-uniform)\n"
+                               "parameters not given keep the defaults of `painleve iwc`.\n"
+                               "rows: id, status (ok, outside the theorems' hypotheses, failed), the case, "
+                               "the outcome,\nthe predictions and the errors (w_error = w/v0 - e).")
+    g = sw.add_argument_group("parameters (see below)")
+    meaning = dict(theta0="rod angle", phi0="angular velocity", delta="contact damping", v0="horizontal velocity",
+                   w10="initial w / eps", alpha="m l^2 / I", mu="friction coefficient",
+                   kappa="compliance law: spring stiffening", beta="compliance law: damping growth")
+    for name, what in meaning.items():
+        g.add_argument(f"--{name}", metavar="SPEC", help=f"{name} values ({what}; default {DEFAULTS[name]:g})")
+    g.add_argument("--eps", "--epsilon", dest="epsilon", metavar="SPEC",
+                   help=f"epsilon values, each in [1e-8, 1] (default {DEFAULTS['epsilon']:g})")
+    sw.add_argument("--random", type=at_least_one, default=0, metavar="N",
+                    help="draw N >= 1 random cases from the ranges instead of a grid")
+    sw.add_argument("--seed", type=count, default=0, help="seed of the random sample (default 0)")
+    sw.add_argument("--out", default="out/sweep.parquet", metavar="PATH",
+                    help="results: a .csv file or a .parquet dataset (default %(default)s)")
+    sw.add_argument("--scheduler", type=scheduler_address, metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
+                    "(its workers need the painleve package; the FMU is sent to them)")
+    sw.add_argument("--workers", type=at_least_one, default=2, help="workers of the local cluster (default 2)")
+    sw.add_argument("--batch", type=at_least_one, default=200, help="cases per dask task (default 200)")
+    sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
+    fmu_option(sw)
+    interface_option(sw)
+    sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def run(args):
+    from ..fmu.experiment import FMI_TYPES
+    from ..sweep.run import run_sweep
+    from ..sweep.spec import PARAMS, SpecError, SweepSpec
+    from ..sweep.store import ResultStore, StoreError
+    texts = {p: getattr(args, p) for p in PARAMS if getattr(args, p) is not None}
+    try:
+        spec = SweepSpec.from_texts(texts, samples=args.random, seed=args.seed)
+    except SpecError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+    try:
+        ResultStore(args.out)       # the output's kind, from its name
+    except StoreError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+    output_path(args.out, "painleve sweep: --out", directory=pathlib.Path(args.out).suffix.lower() in (".parquet", ".pq"))
+    fmu = fmu_file(args.fmu)
+    # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly (even where a shell started it ignoring SIGINT).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, _interrupt)
+    try:
+        result = run_sweep(spec, fmu, args.out, fmi_type=FMI_TYPES[args.interface], scheduler=args.scheduler,
+                           workers=args.workers, batch=max(1, args.batch), serial=args.serial,
+                           progress=not args.no_progress)
+    except StoreError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+    except KeyboardInterrupt:
+        done = len(ResultStore(args.out).read()) if pathlib.Path(args.out).exists() else 0
+        raise Interrupted(f"painleve sweep: interrupted; {done} of {spec.total} cases are saved in {args.out}: "
+                          f"run the same command to resume") from None
+    except OSError as err:
+        if args.scheduler and not getattr(err, "filename", None):
+            raise RunError(f"painleve sweep: cannot reach the dask scheduler {args.scheduler} "
+                           f"({one_line(err)}); check the address, or leave out --scheduler for a local "
+                           f"cluster") from None
+        raise
+    df = ResultStore(args.out).read()
+    counts = df["status"].value_counts().to_dict()
+    iwc = int(df["iwc"].fillna(False).sum())
+    rate = result.ran / result.seconds if result.seconds > 0 else float("nan")
+    print(f"{len(df)} of {spec.total} cases in {args.out} ({', '.join(f'{v} {k}' for k, v in counts.items())}; "
+          f"{iwc} IWC); this run: {result.ran} cases in {result.seconds:.1f} s ({rate:.0f} cases/s)"
+          + (f", {result.skipped} already done" if result.skipped else ""))
+    return 0
+
+
+def scheduler_address(text):
+    """A dask scheduler's address, protocol://host:port or host:port (checked for form only: whether
+    one answers there is known when the sweep connects)."""
+    if not re.fullmatch(r"((tcp|tls|ucx|ws|wss)://)?[A-Za-z0-9._\-\[\]:]+:\d{1,5}", text):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a dask scheduler address such as tcp://host:8786")
+    return text
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt

@@ -1,0 +1,2 @@
+"""The rod in SI units with inputs (si, si_experiment), SSP archives (ssp, ssp_check), the
+co-simulation masters that run them (masters), and the rod on the shaker table (coupled)."""

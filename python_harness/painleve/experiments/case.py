@@ -1,0 +1,46 @@
+"""An IWC experiment as an input record: the rod's parameters and its state on the
+floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
+import math
+from dataclasses import dataclass
+
+from ..theory.analytic import check_case, predict
+
+# The parameters' ranges, the FMU's own (fmu_src/models/PainleveRod/config.h, the min/max of modelDescription.xml;
+# tests/cli/test_cli.py checks they agree): the CLI and sweeps refuse a value outside them before
+# the FMU would. {name: (min, max)}, both ends included.
+RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon": (1e-8, 1.0),
+          "kappa": (0.0, 1e6), "beta": (0.0, 1e6)}
+
+
+@dataclass(frozen=True)
+class Case:
+    """The rod (alpha = m l^2/I, friction mu, damping delta, compliance epsilon) starting on
+    the floor, y = 0, with slip velocity v0, angle theta0, angular velocity phi0 and vertical
+    velocity w = epsilon * w10 (the inner scale of Theorem 2)."""
+    theta0: float = 1.0
+    phi0: float = 0.5
+    v0: float = 1.0
+    delta: float = 1.0
+    epsilon: float = 1e-3
+    w10: float = 0.0
+    alpha: float = 3.0
+    mu: float = 3.0
+    kappa: float = 0.0    # the compliance law's stiffening (0: the paper's linear law, docs/nonlinear_compliance.md)
+    beta: float = 0.0     # its damping growth with penetration
+
+    def check(self):
+        """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
+        check_case(self)
+
+    def start_values(self):
+        """The FMU's start values for this case (fmpy's start_values)."""
+        law = {k: v for k, v in (("kappa", self.kappa), ("beta", self.beta)) if v}   # the FMU's default: linear
+        return dict(alpha=self.alpha, mu=self.mu, delta=self.delta, epsilon=self.epsilon, **law,
+                    x=0.0, v=self.v0, y=0.0, w=self.epsilon * self.w10, theta=self.theta0, phi=self.phi0)
+
+
+def horizon(case):
+    """Where a run of the case that has not returned to the floor is given up: in fast time
+    tau = t/eps the IWC takes ln(1/eps)/lambda_+ to compress and O(1 + delta) to stick and
+    lift off, so eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta))."""
+    return case.epsilon * (10 * math.log(1 / case.epsilon) / predict(case).lambda_plus + 50 * (1 + case.delta))

@@ -1,0 +1,153 @@
+"""What one IWC case did, and the one definition of its phases.
+
+Every way of running a case (Model Exchange, Co-Simulation, a recorded
+trajectory, the scipy reference) reduces its run to the same thing: the mode
+switches it went through, `[(t, contact, mode), ...]` with the state after each
+change and the start (t = 0) first, and the state at the rod's return to the
+floor. `phases` reads the durations off the switches, with one definition:
+
+- touch-down: the first instant the compliant contact is active (F_N > 0);
+  a case starts on the floor, so this is usually t = 0;
+- compression: from touch-down to the start of the first stick (the slip that
+  compresses the contact);
+- stick: from the start of that stick to the first switch out of it;
+- lift-off: from the end of the stick (touch-down, if the rod never stuck) to
+  the last end of contact (F_N = 0) before the return;
+- flight back: from that end of contact to the return to y = 0 moving up
+  (the rod is below the floor without force; zero when delta = 0, where
+  F_N = 0 is y = 0).
+
+Phases that did not happen are NaN; the four add up to t_return - t_touch.
+"""
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..theory import analytic as an
+
+SLIP_FORWARD, STICK, SLIP_BACKWARD = 1, 0, -1     # the FMU's `mode`
+STATE_AT_RETURN = ("v", "y", "w", "theta", "phi")    # what a run reads at the return to the floor
+
+
+class SimulationError(RuntimeError):
+    """The FMU or its solver gave up on a run; the message carries the FMU's own words."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """A case's state at the rod's return to y = 0, its phase durations, and what the run cost."""
+    case: object            # the Case
+    iwc: bool               # the rod stuck before lifting off
+    w: float
+    theta: float
+    phi: float
+    v: float
+    t_return: float
+    compression: float      # durations (see the module's docstring); NaN for phases that did not happen
+    stick: float
+    lift_off: float
+    flight_back: float
+    events: int             # the FMU's events up to the return (-1: not seen, through Co-Simulation)
+    solver_stats: dict = field(default_factory=dict, compare=False)   # e.g. nfev, nsteps of the run
+
+    @property
+    def w_error(self):
+        """w/v0 - e: o(1) as eps -> 0 (Theorem 1)."""
+        return self.w / self.case.v0 - an.predict(self.case).e
+
+    @property
+    def phi_error(self):
+        return self.phi - an.predict(self.case).phi
+
+    @property
+    def theta_error(self):
+        return self.theta - self.case.theta0
+
+    def as_row(self):
+        """A flat dict: the case, the outcome, the predictions and the errors."""
+        predicted = an.predict(self.case)
+        row = {**asdict(self.case), **{k: v for k, v in asdict(self).items() if k not in ("case", "solver_stats")}}
+        row.update(e=predicted.e, predicted_w=predicted.e * self.case.v0, predicted_phi=predicted.phi,
+                   w_error=self.w_error, phi_error=self.phi_error, theta_error=self.theta_error,
+                   time_scale=predicted.time_scale)
+        return row
+
+
+def phases(switches, t_return):
+    """dict(iwc, compression, stick, lift_off, flight_back) from the switches [(t, contact, mode)]
+    (the start first) of a run that returns to the floor at t_return; see the module's docstring."""
+    seen = [(t, bool(contact), mode) for t, contact, mode in switches if t <= t_return]
+    t_touch = next((t for t, contact, _ in seen if contact), t_return)
+    stick_start = next((t for t, contact, mode in seen if contact and mode == STICK), None)
+    stick_end = t_touch if stick_start is None else \
+        next((t for t, contact, mode in seen if t > stick_start and (mode != STICK or not contact)), t_return)
+    ends = [t for (_, was, _), (t, contact, _) in zip(seen, seen[1:]) if was and not contact and t >= stick_end]
+    contact_end = ends[-1] if ends else t_return
+    nan = math.nan
+    return dict(iwc=stick_start is not None,
+                compression=nan if stick_start is None else stick_start - t_touch,
+                stick=nan if stick_start is None else stick_end - stick_start,
+                lift_off=contact_end - stick_end, flight_back=t_return - contact_end)
+
+
+def outcome_from_switches(case, switches, t_return, back, *, events, solver_stats=None):
+    """The Outcome of a run with these switches (see phases), back on the floor at t_return in state `back`."""
+    return Outcome(case=case, w=float(back["w"]), theta=float(back["theta"]), phi=float(back["phi"]),
+                   v=float(back["v"]), t_return=float(t_return), events=events, solver_stats=solver_stats or {},
+                   **{k: (v if k == "iwc" else float(v)) for k, v in phases(switches, t_return).items()})
+
+
+def no_return(case, t):
+    return SimulationError(f"{case} did not return to y = 0 within t = {t:.3g} (is eps small enough "
+                           f"for the asymptotic regime? eps * delta = {case.epsilon * case.delta:g})")
+
+
+def flight_back_to_floor(state):
+    """The free flight run back from `state` (in flight above the floor) to its last
+    y = 0: (time offset s <= 0, state there). Closed form: the centre of mass
+    (x - cos theta, y + sin theta) falls freely, the rod spins uniformly."""
+    th, ph, y, w, v = (float(state[k]) for k in ("theta", "phi", "y", "w", "v"))
+    Ydot, Xdot = w + ph * math.cos(th), v + ph * math.sin(th)
+
+    def height(s):
+        return y + math.sin(th) + Ydot * s - s * s / 2 - math.sin(th + ph * s)
+
+    def speed(s):    # d height / ds = w(s)
+        return Ydot - s - ph * math.cos(th + ph * s)
+    s = -y / w
+    for _ in range(20):   # Newton from the straight-line guess; the root is simple (w > 0)
+        step = height(s) / speed(s)
+        s -= step
+        if abs(step) <= 1e-14:    # height's round-off (~1e-16) over w: s is then exact
+            break
+    return s, dict(w=speed(s), v=Xdot - ph * math.sin(th + ph * s), theta=th + ph * s, phi=ph)
+
+
+def _first(mask, start=0):
+    hits = np.flatnonzero(mask[start:])
+    return start + hits[0] if hits.size else None
+
+
+def outcome_of_trajectory(case, r, *, exact_events=True):
+    """The Outcome of a recorded trajectory (fmpy's structured array with time, v, y, w,
+    theta, phi, mode, contact) that starts on the floor: the return is the first row, after
+    a touch-down, out of contact at y >= 0. With exact event rows (Model Exchange) that row
+    is the return; on a Co-Simulation grid the return is found by flight_back_to_floor."""
+    for name in ("time", "v", "y", "w", "theta", "phi"):
+        if not np.all(np.isfinite(r[name])):
+            raise SimulationError(f"{case}: the FMU returned a non-finite {name}")
+    t, contact, mode = r["time"], r["contact"].astype(bool), r["mode"]
+    touch = _first(contact)
+    end = None if touch is None else _first(~contact & (r["y"] >= 0), touch)
+    if end is None:
+        raise no_return(case, t[-1])
+    changed = np.flatnonzero((contact[1:end + 1] != contact[:end]) | (mode[1:end + 1] != mode[:end])) + 1
+    switches = [(t[i], contact[i], mode[i]) for i in np.concatenate(([0], changed))]
+    back, t_return = r[end], t[end]
+    if not exact_events and r["y"][end] > 0:
+        s, back = flight_back_to_floor(r[end])
+        t_return += s
+        switches = [(min(ts, t_return), c, m) for ts, c, m in switches]   # a switch is known to a grid step only
+    return outcome_from_switches(case, switches, t_return, back,
+                                 events=int(np.sum(np.diff(t[:end + 1]) == 0)) if exact_events else -1)

@@ -1,0 +1,2 @@
+"""Figures: the paper's, from runs of the FMU (paper: the numbers; plots: matplotlib), and the
+coupled study's (coupled)."""

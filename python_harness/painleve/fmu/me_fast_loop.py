@@ -1,0 +1,137 @@
+"""Model Exchange's fast loop: an IWC case from event to event with fmpy's own
+CVode solver and no simulate_fmu around it.
+
+`integrate` is the FMI 2.0 Model Exchange master loop reduced to what an IWC
+case needs: CVode runs from event to event (no output grid), each event gets
+the full event iteration, and the caller decides at each event whether to stop.
+`DirectCVode` is fmpy's CVodeSolver (BDF, dense difference-quotient Jacobian,
+atol = rtol * nominal) with its two callbacks calling the FMU's C functions
+directly (fmpy_internals): half the time of an fmpy fast-loop case, same solver.
+"""
+from ctypes import byref, c_long
+
+from fmpy.sundials import CVodeSolver
+
+from ..experiments.outcome import STATE_AT_RETURN, no_return, outcome_from_switches
+from .fmpy_internals import c_functions, cvode_get_num_steps, vector_data
+
+
+class _NoInput:
+    def apply(self, t):
+        pass
+
+
+class DirectCVode(CVodeSolver):
+    """fmpy's CVodeSolver calling fmi2SetTime, fmi2SetContinuousStates,
+    fmi2GetDerivatives and fmi2GetEventIndicators directly. A status other than
+    fmi2OK fails the step (CVode then reports it, and the FMU has logged why)
+    where fmpy's wrappers would raise inside a ctypes callback, which is ignored.
+    Counts right-hand sides (Jacobian columns included) and steps. Starts at t = 0
+    from the instance's states (it must be in continuous-time mode)."""
+
+    def __init__(self, instance, model_description, *, relative_tolerance, max_step):
+        self._component = instance.component
+        self._set_time, self._set_states, self._get_derivatives, self._get_indicators = c_functions(instance)
+        self.nfev, self._steps_before = 0, 0
+        super().__init__(nx=model_description.numberOfContinuousStates, nz=model_description.numberOfEventIndicators,
+                         get_x=instance.getContinuousStates, set_x=instance.setContinuousStates,
+                         get_dx=instance.getDerivatives, get_z=instance.getEventIndicators,
+                         get_nominals=instance.getNominalsOfContinuousStates, set_time=instance.setTime,
+                         input=_NoInput(), startTime=0.0, maxStep=max_step, relativeTolerance=relative_tolerance,
+                         maxNumSteps=100_000)
+
+    def f(self, t, y, ydot, user_data):
+        self.nfev += 1
+        c = self._component
+        failed = self._set_time(c, t) or self._set_states(c, vector_data(y), self.nx) or \
+            self._get_derivatives(c, vector_data(ydot), self.nx)
+        return -1 if failed else 0
+
+    def g(self, t, y, gout, user_data):
+        c = self._component
+        failed = self._set_time(c, t) or self._set_states(c, vector_data(y), self.nx) or \
+            self._get_indicators(c, gout, self.nz)
+        return -1 if failed else 0
+
+    @property
+    def steps(self):
+        """Steps taken since the start (CVode's own count restarts at each reset)."""
+        n = c_long()
+        cvode_get_num_steps(self.cvode_mem, byref(n))
+        return self._steps_before + n.value
+
+    def reset(self, time):
+        self._steps_before = self.steps
+        super().reset(time)
+
+
+def event_iteration(instance):
+    """fmi2NewDiscreteStates until the FMU needs no more; its last fmi2EventInfo
+    as fmpy returns it: (needed, terminate, nominals changed, values changed,
+    next event time defined, next event time)."""
+    info = (True,)
+    while info[0]:
+        info = instance.newDiscreteStates()
+        if info[1]:
+            break
+    return info
+
+
+def integrate(instance, model_description, *, relative_tolerance, stop_time, at_event):
+    """Runs an instance that has left initialization mode (fmi2ExitInitializationMode)
+    from t = 0: the initial event iteration, then CVode from event to event until
+    at_event(t) is true (after the event's iteration, in continuous-time mode),
+    the FMU asks to terminate, or t reaches stop_time. Returns (t, the solver's
+    counters dict(nfev, nsteps)); raises RuntimeError if CVode fails."""
+    me = model_description.modelExchange
+    info = event_iteration(instance)
+    instance.enterContinuousTimeMode()
+    solver = DirectCVode(instance, model_description, relative_tolerance=relative_tolerance,
+                         max_step=stop_time / 50)   # fmpy's max step
+    t = 0.0
+    while not info[1] and t < stop_time:
+        t_next = min(stop_time, info[5]) if info[4] else stop_time
+        root, _, t = solver.step(t, t_next)
+        instance.setTime(t)
+        step_event = False
+        if not me.completedIntegratorStepNotNeeded:
+            step_event, terminate = instance.completedIntegratorStep()
+            if terminate:
+                break
+        if not (root or step_event or (info[4] and t >= info[5])):
+            continue
+        instance.enterEventMode()
+        info = event_iteration(instance)
+        instance.enterContinuousTimeMode()
+        if at_event(t):
+            break
+        solver.reset(t)
+    return t, dict(nfev=solver.nfev, nsteps=solver.steps)
+
+
+def run_model_exchange(experiment, case):
+    """One case through Model Exchange: the (contact, mode) switches read at each event, the
+    run stopped at the event that returns the rod, having touched, to y = 0."""
+    case.check()
+    settings = experiment.settings(case)
+    switches, back = [], {}
+
+    def at_event(t):
+        contact, mode = experiment.contact_and_mode()
+        if switches[-1][1:] != (contact, mode):
+            switches.append((t, contact, mode))
+        if any(c for _, c, _ in switches) and not contact:
+            back.update(experiment.read(STATE_AT_RETURN))
+            return back["y"] >= 0
+        return False
+
+    with experiment.fresh_run(case) as instance:
+        experiment.start(case, settings["relative_tolerance"])
+        switches.append((0.0, *experiment.contact_and_mode()))     # the start: a reference, not a switch
+        t, experiment.solver_stats = integrate(instance, experiment.model_description,
+                                               relative_tolerance=settings["relative_tolerance"],
+                                               stop_time=settings["stop_time"], at_event=at_event)
+    if back.get("y", -1) < 0:
+        raise no_return(case, t)
+    return outcome_from_switches(case, switches, t, back, events=len(switches) - 1,
+                                 solver_stats=dict(experiment.solver_stats))

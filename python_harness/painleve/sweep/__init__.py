@@ -1,0 +1,2 @@
+"""Sweeps over many IWC cases: what to run (spec), running it on dask (run) and the resumable
+output (store)."""

@@ -1,0 +1,226 @@
+"""Sweeps of IWC cases over a grid or a random sample, run on dask.
+
+The driver splits the case ids still to do into batches (a few hundred cases,
+about a second of work each) and submits them to a dask cluster: a local one
+on this machine by default, or any scheduler by address, unchanged. Each
+worker process keeps one `Experiment` per FMU (fmpy's fast loop: one unzip,
+one instance, reset between cases); the FMU's bytes are sent to the workers
+once, so they need the `painleve` package but not the file. Results are
+written as batches finish (see `sweepstore`), so an interrupted sweep resumes
+without recomputing what was written."""
+import atexit
+import contextlib
+import hashlib
+import logging
+import os
+import pathlib
+import signal
+import sys
+import tempfile
+import threading
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ..experiments.outcome import SimulationError
+from ..fmu.experiment import Experiment
+from ..theory import analytic as an
+from .store import ResultStore, as_frame
+
+
+@dataclass(frozen=True)
+class FmuBlob:
+    """An FMU's bytes and their SHA-256, the form in which workers receive it."""
+    digest: str
+    data: bytes
+
+    @classmethod
+    def read(cls, path):
+        data = pathlib.Path(path).read_bytes()
+        return cls(hashlib.sha256(data).hexdigest(), data)
+
+
+_EXPERIMENTS = {}   # in each process: (FMU digest, fmi_type) -> Experiment
+# Held while a batch runs: a worker's batch runs in its executor thread, and the driver's
+# clean-up (client.run(_close_experiments)) in another; freeing an FMU instance that CVode is
+# integrating in the first corrupts the heap (glibc: "free(): corrupted unsorted chunks",
+# seen when a sweep is interrupted with batches in flight).
+_IN_USE = threading.Lock()
+
+
+def experiment_for(blob, fmi_type, tmp_dir=None):
+    """This process's Experiment for the FMU `blob`, created on first use. The FMU's bytes go to a
+    painleve-* directory only for the Experiment to extract them, and the directory goes at once
+    (the Experiment keeps its own extracted copy, which close() removes). `tmp_dir`: where, if it
+    exists here (the local cluster's workers: the driver removes it even if they are killed)."""
+    key = (blob.digest, fmi_type)
+    if key not in _EXPERIMENTS:
+        tmp_dir = tmp_dir if tmp_dir and os.path.isdir(tmp_dir) else None
+        with tempfile.TemporaryDirectory(prefix="painleve-", dir=tmp_dir) as tmp:
+            path = os.path.join(tmp, "PainleveRod.fmu")
+            with open(path, "wb") as f:
+                f.write(blob.data)
+            _EXPERIMENTS[key] = Experiment(path, fmi_type=fmi_type, tmp_dir=tmp_dir)
+    return _EXPERIMENTS[key]
+
+
+@atexit.register
+def _close_experiments():
+    """Frees this process's FMU instances and extracted files, unless a batch is running: then
+    they are in use, and go when the process ends (a local worker's files with the driver's
+    directory)."""
+    if not _IN_USE.acquire(blocking=False):
+        return
+    try:
+        for experiment in _EXPERIMENTS.values():
+            experiment.close()
+        _EXPERIMENTS.clear()
+    finally:
+        _IN_USE.release()
+
+
+def predictions(case):
+    """The paper's predictions for a case as result columns, NaN where its hypotheses fail."""
+    p = an.predict(case)
+    return dict(theorem=p.theorem, e=p.e, predicted_w=p.e * case.v0, predicted_phi=p.phi, w1_star=p.w1_star,
+                predicts_iwc=p.iwc, time_scale=p.time_scale)
+
+
+def case_row(experiment, case, case_id):
+    """One result row: the case, what the FMU did (status 'ok'), or why it did not run
+    ('outside' the theorems' hypotheses, or 'failed' with the FMU's reason)."""
+    row = {"id": case_id, **asdict(case), **predictions(case), "status": "ok", "message": ""}
+    try:
+        case.check()
+    except an.HypothesisError as err:
+        return {**row, "status": "outside", "message": str(err)}
+    try:
+        outcome = experiment.run(case)
+    except SimulationError as err:
+        return {**row, "status": "failed", "message": str(err)}
+    except Exception as err:   # one bad case must not lose its batch
+        return {**row, "status": "failed", "message": f"{type(err).__name__}: {err}"}
+    return {**row, **outcome.as_row(), "status": "ok"}
+
+
+def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
+    """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
+    with _IN_USE:
+        experiment = experiment_for(blob, fmi_type, tmp_dir)
+        return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
+
+
+@dataclass
+class SweepResult:
+    total: int
+    skipped: int        # done before this run (resumed)
+    ran: int
+    seconds: float
+    out: str
+
+
+def _batches(remaining, size):
+    for start in range(0, len(remaining), size):
+        yield remaining[start:start + size]
+
+
+def _progress(total, initial, enabled):
+    from tqdm import tqdm
+    return tqdm(total=total, initial=initial, unit="case", desc="sweep", disable=not enabled, file=sys.stderr,
+                dynamic_ncols=True, mininterval=0.5, smoothing=0.05)
+
+
+def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, workers=2, batch=200, serial=False,
+              progress=True, say=lambda text: print(text, file=sys.stderr)):
+    """Runs every case of `spec` not yet in `out`; returns a SweepResult."""
+    blob = FmuBlob.read(fmu_path)
+    store = ResultStore(out)
+    done = store.open({**spec.describe(), "fmu_sha256": blob.digest, "fmi_type": fmi_type})
+    remaining = np.setdiff1d(np.arange(spec.total, dtype=np.int64), done)
+    if len(done):
+        say(f"resuming {out}: {len(done)} of {spec.total} cases already done, {len(remaining)} to run")
+    start = time.monotonic()
+    batches = _batches(remaining, max(1, int(batch)))
+    # Connected before the progress bar starts: a scheduler that does not answer is one line, no bar.
+    dask = _connect(scheduler, workers) if len(remaining) and not serial else None
+    # The local cluster's workers extract the FMU in here, removed on every way out, even when
+    # the workers are stopped before they could clean up (Ctrl-C); a scheduler's workers may
+    # be on other machines and outlive the sweep: they clean up themselves (_close_experiments).
+    with tempfile.TemporaryDirectory(prefix="painleve-sweep-") as work, \
+            _progress(spec.total, len(done), progress) as bar:
+        if not len(remaining):
+            pass
+        elif serial:
+            for ids in batches:
+                df = run_batch(spec, ids, blob, fmi_type)
+                store.append(df)
+                bar.update(len(df))
+        else:
+            _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, scheduler=scheduler, say=say,
+                         tmp_dir=None if scheduler else work)
+    return SweepResult(total=spec.total, skipped=len(done), ran=len(remaining),
+                       seconds=time.monotonic() - start, out=str(out))
+
+
+def _connect(scheduler, workers):
+    from dask.distributed import Client, LocalCluster
+    if scheduler:
+        return Client(scheduler, timeout="10s"), None
+    with _workers_ignore_ctrl_c():
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                               silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+@contextlib.contextmanager
+def _workers_ignore_ctrl_c():
+    """Worker processes started in here inherit SIGINT ignored: Ctrl-C in a terminal reaches
+    the whole process group, and it is the driver that stops the workers, cleanly."""
+    try:
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:          # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, *, scheduler, say, tmp_dir=None):
+    from dask.distributed import as_completed
+    client, cluster = dask
+    try:
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+        say(f"dask: {'scheduler ' + scheduler if scheduler else 'local cluster'} with {n_workers} worker(s)")
+        blob_future = client.scatter(blob, broadcast=True, hash=False)
+
+        def submit(ids):
+            return client.submit(run_batch, spec, ids, blob_future, fmi_type, tmp_dir, pure=False)
+        # Keep a few batches per worker in flight: enough to stay busy, few enough to stop quickly.
+        queue = as_completed([submit(ids) for _, ids in zip(range(3 * n_workers), batches)])
+        for future in queue:
+            df = future.result()
+            store.append(df)
+            bar.update(len(df))
+            future.release()
+            nxt = next(batches, None)
+            if nxt is not None:
+                queue.add(submit(nxt))
+    except BaseException:
+        # Interrupted with batches in flight: closing the cluster under them can make a pending
+        # tornado callback fail on a closed connection, logged with a traceback that says nothing
+        # to the user (what was written is kept; the CLI says how to resume).
+        # The same for distributed's own ERROR lines about the connections it is closing.
+        for name in ("tornado.application", "distributed"):
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+        raise
+    finally:
+        try:    # each worker frees its FMU instance and extracted files (workers do not run atexit)
+            client.run(_close_experiments)
+        except Exception:
+            pass
+        client.close()
+        if cluster is not None:
+            cluster.close()

@@ -1,0 +1,2 @@
+"""`painleve validate`'s suite: the static checks of an FMU build (static), the theorems on it
+(suite.validate) and the report of both (report)."""

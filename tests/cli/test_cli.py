@@ -1,0 +1,314 @@
+"""The `painleve` command run as a user runs it (a subprocess), with what it wrote checked:
+iwc, validate (on the built FMU and on one built with a wrong physics constant),
+figures (their points on the analytic curves), sweep (dask equals serial; an
+interrupted sweep resumes without recomputing), and bad input in one line."""
+import json
+import math
+import os
+import pathlib
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from painleve.theory import analytic as an
+from painleve.sweep.store import ResultStore
+from conftest import ROOT
+
+
+def painleve_command():
+    """The installed console script beside this Python, else the module (same code)."""
+    script = pathlib.Path(sys.executable).with_name("painleve")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "painleve"]
+
+
+def run(*args, check_rc=None, timeout=300, cwd=None):
+    r = subprocess.run(painleve_command() + [str(a) for a in args], capture_output=True, text=True,
+                       timeout=timeout, cwd=cwd)
+    if check_rc is not None:
+        assert r.returncode == check_rc, f"exit {r.returncode}\nstdout:\n{r.stdout}\nstderr:\n{r.stderr}"
+    return r
+
+
+def one_line_error(r):
+    lines = [line for line in r.stderr.splitlines() if line.strip()]
+    assert "Traceback" not in r.stderr, r.stderr
+    assert len(lines) == 1, r.stderr
+    return lines[0]
+
+
+# ------------------------------------------------------------------ help
+@pytest.mark.parametrize("command, options", [
+    ([], ["iwc", "validate", "figures", "sweep"]),
+    (["iwc"], ["--theta0", "--phi0", "--v0", "--delta", "--eps", "--w10", "--alpha", "--mu", "--kappa", "--beta",
+               "--fmu", "--interface", "--json"]),
+    (["validate"], ["FMU", "--interface", "--sample", "--kappa", "--beta", "--report", "--json"]),
+    (["figures"], ["--fmu", "--out", "--only", "--dpi"]),
+    (["sweep"], ["--theta0", "--phi0", "--delta", "--eps", "--v0", "--w10", "--alpha", "--mu", "--kappa", "--beta",
+                 "--random", "--seed",
+                 "--out", "--scheduler", "--workers", "--batch", "--serial", "--fmu", "--no-progress", "lo:hi:n"]),
+])
+def test_help_explains_every_option(command, options):
+    r = run(*command, "--help", check_rc=0)
+    for option in options:
+        assert option in r.stdout, f"{option} missing from `painleve {' '.join(command)} --help`"
+
+
+# ------------------------------------------------------------------ iwc
+def test_iwc_prints_the_simulated_outcome_beside_the_analytic_one(fmu_path):
+    r = run("iwc", "--fmu", fmu_path, "--theta0", 1.0, "--phi0", 0.5, "--eps", 1e-5, check_rc=0)
+    e = an.e_integrated(1.0, 1.0)     # exact integration of the sticking system, not the closed form
+    row = next(line for line in r.stdout.splitlines() if line.startswith("w at return"))
+    simulated, analytic = (float(cell.split()[0]) for cell in re.split(r"\s{2,}", row)[1:3])
+    assert analytic == pytest.approx(e, rel=1e-6)
+    assert simulated == pytest.approx(e, rel=1e-3)
+    assert "Theorem 1" in r.stdout and "IWC" in r.stdout
+
+
+def test_iwc_with_a_nonlinear_compliance_law_compares_with_its_rigid_limit(fmu_path):
+    # --kappa, --beta reach the FMU, and the analytic column is the law's e (painleve.theory.rigid_limit),
+    # which the simulated w approaches as for the linear law, not the linear e.
+    from painleve.theory import rigid_limit
+    r = json.loads(run("iwc", "--fmu", fmu_path, "--theta0", 0.9, "--phi0", 0.5, "--eps", 1e-6, "--kappa", 2,
+                       "--beta", 2, "--json", check_rc=0).stdout)
+    e_law, e_linear = rigid_limit.e(1.0, 0.9, kappa=2.0, beta=2.0), an.e(1.0, 0.9)
+    assert r["predicted"]["e"] == pytest.approx(e_law, rel=1e-10)
+    assert r["simulated"]["w"] == pytest.approx(e_law, rel=1e-3) and abs(r["simulated"]["w"] - e_linear) > 0.01 * e_linear
+
+
+def test_iwc_json_on_both_sides_of_the_separatrix(fmu_path):
+    state = ["--theta0", 0.9463, "--phi0", 1.6654, "--eps", 1e-5]
+    w1s = an.w1_star(0.9463, 1.6654, 1.0)
+    below = json.loads(run("iwc", "--fmu", fmu_path, *state, "--w10", 1.5 * w1s, "--json", check_rc=0).stdout)
+    above = json.loads(run("iwc", "--fmu", fmu_path, *state, "--w10", 0.5 * w1s, "--json", check_rc=0).stdout)
+    assert below["predicted"]["theorem"] == 2 and below["predicted"]["w1_star"] == pytest.approx(w1s)
+    assert below["simulated"]["iwc"] and below["simulated"]["w"] == pytest.approx(an.e_integrated(1.0, 0.9463),
+                                                                                  rel=0.01)
+    assert not above["simulated"]["iwc"] and 0 < above["simulated"]["w"] < 5e-5      # w = O(eps)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["iwc", "--gamma", "3"], ["--gamma", "painleve iwc --help"]),
+    (["iwc", "--eps", "0"], ["eps", "small positive"]),
+    (["iwc", "--eps", "-1e-3"], ["eps", "small positive"]),
+    (["iwc", "--fmu", "/nonexistent/PainleveRod.fmu"], ["no FMU at /nonexistent", "run.sh"]),
+    (["iwc", "--theta0", "1.5"], ["p_+", "choose --theta0 inside the Painleve wedge"]),
+    (["iwc", "--mu", "1"], ["mu_P", "raise --mu"]),
+    (["iwc", "--theta0", "0.9463", "--phi0", "1.6654"], ["w10", "give --w10 < 0"]),
+    (["iwc", "--v0", "-1"], ["v0", "give --v0 > 0"]),
+    (["sweep", "--gamma", "1:2:3"], ["--gamma"]),
+    (["sweep", "--eps", "0:1e-3:3"], ["--eps", "[1e-8, 1]"]),
+    (["sweep", "--theta0", "0.5:1.4"], ["lo:hi:n"]),
+    (["figures", "--only", "nope"], ["GB, eDelta0, video"]),
+    (["validate", "/nonexistent/PainleveRod.fmu"], ["no FMU at /nonexistent"]),
+])
+def test_bad_input_ends_in_one_line_that_says_what_to_change(fmu_path, args, words):
+    if "--fmu" not in args and args[0] in ("iwc", "sweep", "figures"):
+        args = args + ["--fmu", fmu_path]
+    r = run(*args)
+    assert r.returncode == 2, r.stderr
+    line = one_line_error(r)
+    for word in words:
+        assert word in line
+
+
+def test_a_file_that_is_not_an_fmu_is_named(tmp_path):
+    bogus = tmp_path / "PainleveRod.fmu"
+    bogus.write_text("not a zip")
+    assert "is not an FMU" in one_line_error(run("validate", bogus))
+
+
+# ------------------------------------------------------------------ validate
+def test_validate_passes_on_the_built_fmu_and_writes_its_report(fmu_path, tmp_path):
+    report = tmp_path / "validation.md"
+    r = run("validate", fmu_path, "--report", report, check_rc=0)
+    assert "FAIL" not in r.stdout
+    checks = [line for line in r.stdout.splitlines() if line.startswith("PASS")]
+    kinds = {line.split()[1].split("/")[0] for line in checks}
+    assert kinds == {"static", "default", "theorem1", "theorem2", "separatrix"}
+    assert len(checks) > 50 and f"all {len(checks)} checks passed" in r.stdout
+    assert report.read_text().count("| PASS |") == len(checks)
+
+
+@pytest.fixture(scope="module")
+def wrong_physics_fmu(tmp_path_factory):
+    """The FMU built from this tree with the Filippov coefficient S_w = (1 + alpha)/k
+    of Proposition lem:Filippov replaced by (2 + alpha)/k."""
+    src = tmp_path_factory.mktemp("wrong")
+    for name in ("CMakeLists.txt", "modelDescription.xml"):
+        shutil.copy(ROOT / name, src / name)
+    for folder in ("fmu_src", "cmake"):
+        shutil.copytree(ROOT / folder, src / folder)
+    rod = src / "fmu_src" / "rod" / "rod.c"
+    text = rod.read_text()
+    right = "r.S_w = (1 + al) / k;"
+    if right not in text:
+        pytest.fail(f"rod.c no longer contains {right!r}: update the wrong-physics patch of this test")
+    rod.write_text(text.replace(right, "r.S_w = (2 + al) / k;"))
+    cmake = shutil.which("cmake", path=str(pathlib.Path(sys.executable).parent) + os.pathsep + os.environ["PATH"])
+    build = src / "build"
+    for cmd in ([cmake, "-S", src, "-B", build, f"-DPython3_EXECUTABLE={sys.executable}"],
+                [cmake, "--build", build, "-j", "2"]):
+        r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
+        assert r.returncode == 0, r.stdout + r.stderr
+    return str(build / "PainleveRod.fmu")
+
+
+def test_validate_fails_on_an_fmu_with_a_wrong_physics_constant_naming_the_cases(wrong_physics_fmu, tmp_path):
+    report = tmp_path / "validation.json"
+    r = run("validate", wrong_physics_fmu, "--report", report)
+    assert r.returncode == 1, r.stdout + r.stderr
+    failed = [line.split()[1] for line in r.stdout.splitlines() if line.startswith("FAIL")]
+    # it is a valid FMU with the right interface; what fails is the physics
+    assert not any(name.startswith(("static", "default")) for name in failed)
+    assert "theorem1/ME/wide-f0.5-d1" in failed and "theorem2/ME/video/below" in failed
+    summary = r.stdout.strip().splitlines()[-1]
+    assert "FAILED" in summary and "theorem1/ME/wide-f0.2-d0" in summary
+    data = json.loads(report.read_text())
+    assert not data["passed"] and set(data["failed"]) == set(failed)
+    worst = max(abs(c["numbers"]["w_rel_errors"][-1]) for c in data["checks"] if c["id"] in failed
+                and c["id"].startswith("theorem1"))
+    assert worst > 0.02       # the error no longer falls with eps: percents at eps = 1e-6
+
+
+# ------------------------------------------------------------------ figures
+@pytest.fixture(scope="module")
+def figures(fmu_path, tmp_path_factory):
+    out = tmp_path_factory.mktemp("figures")
+    r = run("figures", "--fmu", fmu_path, "--out", out, "--dpi", 80, check_rc=0)
+    return out, r.stdout.split()
+
+
+def test_figures_are_written_as_pngs(figures):
+    import matplotlib.image
+    out, printed = figures
+    for name in ("fig_GB.png", "fig_eDelta0.png", "fig_video.png", "fig_eLaw.png"):
+        assert str(out / name) in printed
+        image = matplotlib.image.imread(out / name)
+        assert image.shape[0] > 300 and image.shape[1] > 500 and image.std() > 0.05
+    summary = (out / "figures.md").read_text()
+    assert "(fig_GB.png)" in summary and "fig:" not in summary       # no LaTeX labels in what a user reads
+
+
+def test_fig_gb_points_lie_in_the_analytic_quadrants(figures):
+    gb = json.loads((figures[0] / "figures.json").read_text())["GB"]
+    for q in gb["points"]:
+        b = -1 + q["phi"] ** 2 * math.sin(q["theta"])
+        s, c = math.sin(q["theta"]), math.cos(q["theta"])
+        p = 1 + 3 * c * c - 1.4 * 3 * s * c
+        expected = {(True, True): "indeterminate", (True, False): "lift-off", (False, False): "slipping",
+                    (False, True): "inconsistent"}[(b > 0, p < 0)]
+        assert q["analytic"] == expected
+        if abs(b) > 0.02 and abs(p) > 0.02:     # away from the lines b = 0 and p_+ = 0
+            assert q["simulated"] == expected, q
+    assert gb["agreement"] > 0.95
+
+
+def test_fig_edelta0_points_lie_on_the_curves_and_approach_them_as_eps_falls(figures):
+    d = json.loads((figures[0] / "figures.json").read_text())["eDelta0"]
+    for q in d["a"]:
+        assert q["e_analytic"] == pytest.approx(an.e_integrated(0.0, q["theta0"], alpha=3, mu=1.4), rel=1e-7)
+    fine = {q["theta0"]: q for q in d["a"] if q["epsilon"] == 1e-6}
+    coarse = {q["theta0"]: q for q in d["a"] if q["epsilon"] == 1e-4}
+    for theta0, q in fine.items():
+        assert abs(q["rel_error"]) < 0.015
+        assert abs(q["rel_error"]) < abs(coarse[theta0]["rel_error"])
+    for q in d["b"]:
+        assert q["e_analytic"] == pytest.approx(an.e_integrated(q["delta"], q["theta0"], alpha=3, mu=1.4),
+                                                rel=1e-7)
+        assert abs(q["rel_error"]) < 0.01
+
+
+def test_fig_video_one_rod_undergoes_iwc_and_the_other_lifts_off(figures):
+    v = json.loads((figures[0] / "figures.json").read_text())["video"]
+    green, blue = v["rods"]["green"], v["rods"]["blue"]
+    eps = v["params"]["epsilon"]
+    assert v["separation_at_t0"] == pytest.approx(1e-3, rel=1e-6)
+    for rod in (green, blue):    # both graze at t = 0.5 in the paper's state
+        assert rod["touch"]["time"] == pytest.approx(0.5, abs=1e-5)
+        assert rod["touch"]["theta"] == pytest.approx(0.9463, abs=1e-5)
+        assert rod["touch"]["v"] == pytest.approx(1.0, abs=1e-5)
+    assert green["touch"]["w"] < eps * v["w1_star"] < blue["touch"]["w"] < 0
+    e = an.e_integrated(1.0, 0.9463)
+    p, q = an.p_plus(0.9463), an.q_plus(0.9463)
+    assert green["iwc"] and green["w_return"] == pytest.approx(e * green["touch"]["v"], rel=0.03)
+    assert green["min_w"] == pytest.approx(-p / q * green["touch"]["v"], rel=0.03)     # eq z2EpsPi2
+    assert not blue["iwc"] and 0 < blue["w_return"] < eps
+    assert green["y_at_t_end"] > blue["y_at_t_end"] + 0.05      # clearly apart at t = 1
+
+
+# ------------------------------------------------------------------ sweep
+SWEEP = ["--theta0", "0.3:1.5:7", "--phi0", "0.5,1.3", "--eps", "1e-5:1e-3:3:log", "--delta", "0,1"]
+
+
+def test_a_sweep_on_two_dask_workers_gives_the_numbers_of_the_serial_sweep(fmu_path, tmp_path):
+    serial, parallel = tmp_path / "serial.csv", tmp_path / "dask.parquet"
+    r = run("sweep", "--fmu", fmu_path, *SWEEP, "--serial", "--out", serial, check_rc=0)
+    assert "84 of 84 cases" in r.stdout
+    r = run("sweep", "--fmu", fmu_path, *SWEEP, "--workers", 2, "--batch", 20, "--out", parallel, check_rc=0)
+    assert "local cluster with 2 worker(s)" in r.stderr and "case/s" in r.stderr    # the progress bar
+    a, b = ResultStore(serial).read(), ResultStore(parallel).read()
+    assert list(a["id"]) == list(range(84))
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    ok = a[a["status"] == "ok"]
+    assert len(ok) > 20 and set(a["status"]) == {"ok", "outside"}    # theta0 = 0.3, 1.5 lie outside the wedge
+    for _, row in ok.iterrows():    # the predictions, independently of the harness's closed form
+        assert row["e"] == pytest.approx(an.e_integrated(row["delta"], row["theta0"]), rel=1e-7)
+    fine = ok[(ok["theorem"] == 1) & (ok["epsilon"] == 1e-5)]
+    assert len(fine) > 5 and np.all(np.abs(fine["w_error"] / fine["e"]) < 0.01)
+
+
+def test_an_interrupted_sweep_resumes_without_recomputing_finished_cases(fmu_path, tmp_path):
+    """SIGINT to the whole process group (Ctrl-C in a terminal) in the middle of a dask sweep: one
+    line saying how many cases are saved and how to resume, none of distributed's ERROR lines; the
+    same command then finishes the sweep, each case once."""
+    out = tmp_path / "sweep.csv"
+    args = ["sweep", "--fmu", fmu_path, "--theta0", "0.5:1.4:50", "--phi0", "0.3,0.6", "--eps", "1e-4,1e-5",
+            "--batch", 10, "--workers", 2, "--out", out, "--no-progress"]
+    p = subprocess.Popen(painleve_command() + [str(a) for a in args], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and p.poll() is None:
+        if out.exists() and out.read_text().count("\n") > 30:
+            break
+        time.sleep(0.05)
+    os.killpg(p.pid, signal.SIGINT)          # Ctrl-C in a terminal: the whole process group
+    stdout, stderr = p.communicate(timeout=60)
+    assert p.returncode == 130, stdout + stderr
+    assert "Traceback" not in stderr and "ERROR" not in stderr and "distributed" not in stderr, stderr
+    errors = [line for line in stderr.splitlines() if line.startswith("error:")]
+    assert len(errors) == 1 and "run the same command to resume" in errors[0], stderr
+    before = out.read_text()
+    done = before.count("\n") - 1
+    assert 30 <= done < 200
+    assert f"interrupted; {done} of 200 cases are saved in {out}" in errors[0]
+    r = run(*args, check_rc=0)
+    assert f"resuming {out}: {done} of 200 cases already done, {200 - done} to run" in r.stderr
+    after = out.read_text()
+    assert after.startswith(before)          # finished rows untouched, the rest appended
+    ids = pd.read_csv(out)["id"]
+    assert sorted(ids) == list(range(200))   # each case once: none recomputed, none lost, no duplicate
+
+
+def test_a_csv_row_cut_by_a_crash_is_dropped_and_rerun(fmu_path, tmp_path):
+    out = tmp_path / "sweep.csv"
+    args = ["sweep", "--fmu", fmu_path, "--theta0", "0.6:1.2:8", "--serial", "--batch", 4, "--out", out]
+    run(*args, check_rc=0)
+    whole = out.read_text()
+    out.write_text(whole[:-25])              # the last row cut in the middle
+    r = run(*args, check_rc=0)
+    assert "7 of 8 cases already done" in r.stderr
+    assert out.read_text() == whole
+
+
+def test_a_different_sweep_into_the_same_file_is_refused(fmu_path, tmp_path):
+    out = tmp_path / "sweep.csv"
+    run("sweep", "--fmu", fmu_path, "--theta0", "0.6:1.2:4", "--serial", "--out", out, check_rc=0)
+    r = run("sweep", "--fmu", fmu_path, "--theta0", "0.6:1.2:5", "--serial", "--out", out)
+    assert r.returncode == 2 and "holds another sweep" in one_line_error(r)

@@ -1,0 +1,100 @@
+"""`painleve couple` run as a user runs it (a subprocess): the coupled study's figure, table and
+SSP archive, the printed impulses checked against the written table, every master; bad input
+and failed runs end in one line on stderr with nothing left behind in the temporary directory."""
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from painleve.coupling.ssp import start_values
+from painleve.coupling.ssp_check import check_ssp
+from conftest import ROOT
+
+ROD = ROOT / "build" / "PainleveRodSI.fmu"
+TABLE = ROOT / "build" / "ShakerTable.fmu"
+
+
+def painleve(*args, tmpdir=None):
+    script = pathlib.Path(sys.executable).with_name("painleve")
+    cmd = [str(script)] if script.exists() else [sys.executable, "-m", "painleve"]
+    env = None if tmpdir is None else dict(os.environ, TMPDIR=str(tmpdir))
+    return subprocess.run(cmd + ["couple"] + [str(a) for a in args], capture_output=True, text=True, timeout=300,
+                          env=env)
+
+
+def one_line_error(r, status):
+    assert r.returncode == status, f"exit {r.returncode}\nstdout:\n{r.stdout}\nstderr:\n{r.stderr}"
+    lines = [line for line in r.stderr.splitlines() if line.strip()]
+    assert "Traceback" not in r.stderr and len(lines) == 1, r.stderr
+    assert r.stdout == "", r.stdout
+    return lines[0]
+
+
+def test_help_explains_every_option():
+    r = painleve("--help")
+    assert r.returncode == 0
+    for option in ("--rod", "--table", "--master", "--stop", "--step", "--set", "--out", "--ssp", "--csv", "--dpi",
+                   "fmpy", "libcosim", "ecos"):
+        assert option in r.stdout, option
+
+
+@pytest.mark.parametrize("master", ["fmpy", "libcosim", "ecos"])
+def test_couple_writes_the_figure_the_table_and_the_archive(master, tmp_path):
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    out = tmp_path / "out"
+    r = painleve("--rod", ROD, "--table", TABLE, "--master", master, "--stop", 0.02, "--step", 1e-4,
+                 "--set", "table.F0=80", "--out", out / "couple.png", "--csv", out / "couple.csv",
+                 "--ssp", out / "coupled.ssp", "--dpi", 40, tmpdir=scratch)
+    assert r.returncode == 0, r.stderr
+    assert (out / "couple.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert check_ssp(out / "coupled.ssp") == []
+    table = np.genfromtxt(out / "couple.csv", delimiter=",", names=True, deletechars="")
+    assert len(table) == 200 and table["time"][-1] == pytest.approx(0.02)
+    # the printed impulse on the table is the sum of h times the F_N the table held
+    line = next(x for x in r.stdout.splitlines() if x.startswith("impulse of F_N"))
+    on_table = float(line.split("on the table ")[1].split()[0])
+    assert on_table == pytest.approx(1e-4 * np.sum(table["table.F_N"]), rel=1e-5)
+    # the start value is bound in the archive, beside the defaults of both models
+    values = start_values(out / "coupled.ssp")
+    assert values["table"]["F0"] == 80 and values["table"]["M"] == 10 and values["rod"]["k"] == 2e7
+    assert f"master {master}" in r.stdout
+    assert list(scratch.iterdir()) == []                      # nothing left behind
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["--rod", "nowhere.fmu"], "--rod nowhere.fmu: no such file"),
+    (["--table", ROOT / "build" / "PainleveRod.fmu"], "not the table"),
+    (["--rod", TABLE], "not the rod"),
+    (["--set", "rod.nope=1"], "--set rod.nope: the rod has no such variable; it takes F_x, F_y, J, c, g, k, l, m, mu, phi, tau, theta, v, w, x, y"),
+    (["--set", "rod.F_N=1"], "the rod has no start value to set there"),
+    (["--set", "rod.y_floor=1"], "the rod has no start value to set there"),     # the table drives it
+    (["--set", "rod.k=-1"], "the SSP is not valid: rod.k = -1.0: outside [1e-06,"),
+    (["--set", "k=1"], "is not COMPONENT.NAME=VALUE"),
+    (["--stop", 0.1, "--step", 3e-4], "--stop 0.1 is not a whole number of --step 0.0003"),
+    (["--step", 0], "argument --step: 0 is not > 0"),
+    (["--master", "omsimulator"], "argument --master: invalid choice"),
+])
+def test_bad_input_ends_in_one_line(args, expected, tmp_path):
+    base = {"--rod": ROD, "--table": TABLE}
+    for i in range(0, len(args) - 1, 2):
+        base.pop(args[i], None)
+    full = [a for kv in base.items() for a in kv] + list(args) + ["--out", tmp_path / "x.png"]
+    line = one_line_error(painleve(*full, tmpdir=tmp_path), 2)
+    assert expected in line, line
+    assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize("master", ["fmpy", "libcosim"])
+def test_a_run_the_fmus_refuse_ends_in_one_line_naming_the_fmus_error(master, tmp_path):
+    """A weightless table (1 mg, no spring) driven by 1e9 N runs away: the rod's F_N, fed back to
+    the table, leaves the table's input range [-1e9, 1e9] N and the table refuses it."""
+    r = painleve("--rod", ROD, "--table", TABLE, "--master", master, "--stop", 0.01,
+                 "--set", "table.M=1e-6", "--set", "table.K=0", "--set", "table.C=0", "--set", "table.F0=1e9",
+                 "--out", tmp_path / "x.png", tmpdir=tmp_path)
+    line = one_line_error(r, 1)
+    assert f"the {master} run failed" in line and "is out of range: allowed range is [-1e+09, 1e+09]" in line, line
+    assert [p.name for p in tmp_path.iterdir()] == []      # nothing left behind, no figure
