@@ -1,4 +1,4 @@
-"""Benchmark of bounded calls: the random legal cases of tests/test_bounded_calls.py
+"""Benchmark of bounded calls: the random legal cases of tests/fmu/test_bounded_calls.py
 (bench/bounded_cases.py), a few thousand by default, and a table per model x FMI
 version x interface (Model Exchange per solver): cases, hangs, crashes, Zeno
 errors, other errors, Discards, runs where fmpy's CVode gave up, and the slowest

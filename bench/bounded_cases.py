@@ -1,6 +1,6 @@
 """Random legal cases of every built FMU (model x FMI version x interface), each run
 in a worker child process under a wall limit: the machinery of
-tests/test_bounded_calls.py (every call returns) and bench/bounded_calls.py (its
+tests/fmu/test_bounded_calls.py (every call returns) and bench/bounded_calls.py (its
 table over a few thousand cases).
 
 A case is a dict of plain values (JSON), made from (seed, index) alone, so any

@@ -129,7 +129,7 @@ INPUTS = {
         Fmi3().enter_init(1.56e-6, 0.0).set_float64(ISSUE23_ROD).exit_init().do_step(0.1).do_step(0.1).b,
     "regress-si-issue23-loose-tolerance-step-hangs":
         Fmi2().setup(0.157, 0.0).set_real(ISSUE23_SI).initialize().do_step(0.1).do_step(0.1).b,
-    # tests/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
+    # tests/fmu/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
     "regress3-bounded-case-363-mu-1e6-step-hangs":
         Fmi3().enter_init(0.00016730382132527658, 48.125)
         .set_float64(rod_values(alpha=10.0600042616934, mu=1e6, delta=0.7782685507711189, epsilon=0.00485469810196373))
