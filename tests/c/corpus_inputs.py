@@ -94,7 +94,7 @@ class Bounded:
 
 # PainleveRod's value references (modelDescription.xml; FMI 3.0 numbers them alike).
 ROD = dict(alpha=0, mu=1, delta=2, epsilon=3, x=4, v=5, y=6, w=7, theta=8, phi=9, kappa=24)
-# PainleveRodSI's (models/PainleveRodSI/modelDescription.xml).
+# PainleveRodSI's (fmu_src/models/PainleveRodSI/modelDescription.xml).
 SI = dict(m=0, l=1, J=2, g=3, k=4, c=5, mu=6, y_floor=10, w_floor=11, v_floor=12, F_x=13, F_y=14, tau=15, x=16, v=17, y=18, w=19, theta=20, phi=21)
 
 
