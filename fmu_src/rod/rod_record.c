@@ -90,7 +90,8 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
         return false;
     }
     if (e->switched) record_switch(r, before, time);
-    r->returns = e->switched ? 0 : (r->returns < ROD_MAX_RETURNS ? r->returns + 1 : ROD_MAX_RETURNS);
+    /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
+    r->returns = e->switched || !moved ? 0 : (r->returns < ROD_MAX_RETURNS ? r->returns + 1 : ROD_MAX_RETURNS);
     snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
              before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
     /* Zeno guard: events that do not advance time beyond round-off. */
