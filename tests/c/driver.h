@@ -25,6 +25,9 @@ const char *status_name(fmi2Status s);
  * not named by "fmi2GetRealStatus: ..."). */
 bool names_call(const char *message, const char *call);
 
+/* Arrays of the model's variables. */
+enum { MAX_VARS = 64 };
+
 /* ----------------------------------------------------- instance states */
 
 /* The states of the Model Exchange state machine (FMI 2.0.4 §3.2.3) and of
@@ -84,5 +87,4 @@ void test_conformance_null_instance(void);   /* conformance_table.c */
 void test_error_state_recovery(void);        /* conformance_table.c */
 void test_directional_derivatives(void);     /* conformance_directional.c */
 void test_inputs(void);                      /* input_checks.c */
-
 #endif
