@@ -25,6 +25,10 @@ const char *status_name(fmi2Status s);
  * not named by "fmi2GetRealStatus: ..."). */
 bool names_call(const char *message, const char *call);
 
+/* A copy of n bytes (an FMU state serialized) in a block of exactly n, so that
+ * any read past the end is caught; freed with free. */
+void *exact_copy(const void *bytes, size_t n);
+
 /* Arrays of the model's variables. */
 enum { MAX_VARS = 64 };
 

@@ -11,14 +11,6 @@ static const FmiApi *const f = &api;
 
 /* ----------------------------------------------------- FMU state bytes */
 
-/* A copy of n bytes in a block of exactly n, so that any read past the end is caught. */
-static fmi2Byte *exact_copy(const fmi2Byte *bytes, size_t n)
-{
-    fmi2Byte *p = malloc(n ? n : 1);
-    if (p && n) memcpy(p, bytes, n);
-    return p;
-}
-
 /* Serialized states cut short or with a byte changed are refused, never
  * read past their end; an intact one round-trips. Skipped where the FMU does
  * not serialize its state. */
