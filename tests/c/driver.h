@@ -86,7 +86,7 @@ void check_error_reported(const char *what, const char *call, long errors_before
 /* ----------------------------------------------------------- the tests */
 
 void test_conformance_table(void);           /* conformance_table.c */
-void test_conformance_variables(void);       /* conformance_table.c */
+void test_conformance_variables(void);       /* conformance_variables.c */
 void test_conformance_null_instance(void);   /* conformance_table.c */
 void test_error_state_recovery(void);        /* conformance_table.c */
 void test_directional_derivatives(void);     /* conformance_directional.c */
