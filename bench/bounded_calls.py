@@ -16,6 +16,7 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import bounded_cases as bc  # noqa: E402
+import bounded_runs as br  # noqa: E402
 
 COLUMNS = ("hang", "crash", "zeno", "illegal", "harness", "error", "discard", "solver")
 
@@ -41,11 +42,11 @@ def main(argv=None):
     verbose = args.only is not None
 
     def progress(case, result):
-        if verbose or result["outcome"] in bc.FAILURES or result["outcome"] in args.show:
+        if verbose or result["outcome"] in br.FAILURES or result["outcome"] in args.show:
             print(f"{result['outcome'].upper()} {bc.describe(case)}\n    {result['detail'][:300]}"
                   f"\n    slowest call {result['slowest'][0]:.3f} s: {result['slowest'][1][:120]}", flush=True)
 
-    results = bc.run_cases(models, cases, args.wall, progress)
+    results = br.run_cases(models, cases, args.wall, progress)
     print(f"\n{len(cases)} cases (seed {args.seed}, wall limit {args.wall:g} s) in {time.time() - started:.0f} s")
     print(table(cases, results))
 

@@ -24,8 +24,6 @@
 
 static const FmiApi *const f = &api;
 
-enum { MAX_VARS = 64 };
-
 /* Central differences (steps of 1e-4 of the known's size) and the analytic
  * partials agree to this: the change each makes in the unknown for a change
  * of its known by the known's size, relative to the largest such change of

@@ -25,6 +25,13 @@ const char *status_name(fmi2Status s);
  * not named by "fmi2GetRealStatus: ..."). */
 bool names_call(const char *message, const char *call);
 
+/* A copy of n bytes (an FMU state serialized) in a block of exactly n, so that
+ * any read past the end is caught; freed with free. */
+void *exact_copy(const void *bytes, size_t n);
+
+/* Arrays of the model's variables. */
+enum { MAX_VARS = 64 };
+
 /* ----------------------------------------------------- instance states */
 
 /* The states of the Model Exchange state machine (FMI 2.0.4 §3.2.3) and of
@@ -79,10 +86,9 @@ void check_error_reported(const char *what, const char *call, long errors_before
 /* ----------------------------------------------------------- the tests */
 
 void test_conformance_table(void);           /* conformance_table.c */
-void test_conformance_variables(void);       /* conformance_table.c */
+void test_conformance_variables(void);       /* conformance_variables.c */
 void test_conformance_null_instance(void);   /* conformance_table.c */
 void test_error_state_recovery(void);        /* conformance_table.c */
 void test_directional_derivatives(void);     /* conformance_directional.c */
 void test_inputs(void);                      /* input_checks.c */
-
 #endif

@@ -56,7 +56,7 @@ void inst3_works(Inst3 *in, const char *what);
 void check3_error_reported(const char *what, const char *call, long errors_before);
 
 void test3_conformance_table(void);      /* fmi3_conformance.c */
-void test3_conformance_variables(void);  /* fmi3_conformance.c */
+void test3_conformance_variables(void);  /* fmi3_conformance_variables.c */
 void test3_null_instance(void);          /* fmi3_conformance.c */
 void test3_derivatives(void);            /* fmi3_directional.c */
 

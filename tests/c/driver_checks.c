@@ -1,7 +1,8 @@
-/* The driver's checks: counted, and reported with file and line. */
+/* The driver's checks: counted, and reported with file and line; names in messages; exact copies of bytes. */
 #include <ctype.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "driver.h"
@@ -37,4 +38,11 @@ bool names_call(const char *message, const char *call)
         if (!isalnum((unsigned char)next) && next != '_') return true;
     }
     return false;
+}
+
+void *exact_copy(const void *bytes, size_t n)
+{
+    void *p = malloc(n ? n : 1);
+    if (p && n) memcpy(p, bytes, n);
+    return p;
 }

@@ -22,8 +22,6 @@
 
 static const Fmi3Api *const f = &api3;
 
-enum { MAX_VARS = 64 };
-
 /* In contact, slipping forward, away from the switching surfaces, so that
  * central differences stay in one mode; with a nonlinear compliance law
  * (kappa, beta > 0: differences in them may step both ways). */

@@ -15,8 +15,6 @@
 
 static const FmiApi *const f = &api;
 
-enum { MAX_VARS = 64 };
-
 /* The inputs (ScalarVariable indices); their number. */
 static int input_indices(int out[MAX_VARS])
 {

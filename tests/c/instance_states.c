@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "driver.h"
+#include "robustness.h"
 
 static const FmiApi *const f = &api;
 
@@ -230,4 +230,77 @@ void inst_works(Inst *in, const char *what)
     }
     CHECK(st == fmi2OK, "%s: the instance (%s) no longer works: %s: %s (%s)", what, STATE_NAME[in->state], doing,
           status_name(st), harness.last_message);
+}
+
+/* ------------------------------------- what the robustness tests share */
+
+/* A new instance brought to `state` (driver.h), logging off, or NULL. */
+fmi2Component instance_in(State state)
+{
+    Inst in;
+    return inst_reach(&in, state, false) ? in.c : NULL;
+}
+
+void free_instance(fmi2Component c)
+{
+    Inst in = { .c = c };
+    inst_free(&in);
+}
+
+/* After an fmi2Error: a message naming a call, and the Error state (no
+ * simulation call accepted, getters still are). */
+void check_error_handling(fmi2Component c, const char *what, long errors_before)
+{
+    CHECK(harness.error_messages > errors_before, "%s returned fmi2Error without logging an error", what);
+    CHECK(strstr(harness.last_error, "fmi2") != NULL, "%s: error message names no call: '%s'", what,
+          harness.last_error);
+    double x[MODEL_NX];
+    CHECK(f->SetTime(c, 0) == fmi2Error, "%s: fmi2SetTime accepted in the Error state", what);
+    CHECK(f->EnterContinuousTimeMode(c) == fmi2Error, "%s: fmi2EnterContinuousTimeMode accepted in the Error state",
+          what);
+    CHECK(f->SetReal(c, NULL, 0, NULL) == fmi2Error, "%s: fmi2SetReal accepted in the Error state", what);
+    CHECK(f->GetContinuousStates(c, x, MODEL_NX) == fmi2OK, "%s: fmi2GetContinuousStates refused in the Error state",
+          what);
+}
+
+/* fmi2Reset from any state gives an instance that simulates. */
+void check_reset_recovers(fmi2Component c, const char *what)
+{
+    if (!CHECK(f->Reset(c) == fmi2OK, "%s: fmi2Reset failed", what)) return;
+    EulerSim s = { .c = c };
+    const fmi2Status st = harness_simulate(f, &s, 0.1, 5e-3, 20);
+    CHECK(st == fmi2OK, "%s: simulation after fmi2Reset: %s (%s)", what, status_name(st), harness.last_message);
+}
+
+/* The value references of the Real variables of modelDescription.xml; their number. */
+size_t real_vrs(fmi2ValueReference vr[MAX_VARS])
+{
+    size_t n = 0;
+    for (int k = 1; k <= MD_N_VARIABLES && n < MAX_VARS; ++k)
+        if (md_var(k)->type == MD_REAL) vr[n++] = md_var(k)->vr;
+    return n;
+}
+
+/* The first variable of `type`; VR_COUNT (no variable) if the model has none. */
+fmi2ValueReference first_of_type(MdType type)
+{
+    for (int k = 1; k <= MD_N_VARIABLES; ++k)
+        if (md_var(k)->type == type) return md_var(k)->vr;
+    return VR_COUNT;
+}
+
+/* Every Real read; each finite. */
+fmi2Status get_all_reals(fmi2Component c)
+{
+    fmi2ValueReference vr[MAX_VARS];
+    double v[MAX_VARS];
+    const size_t n = real_vrs(vr);
+    const fmi2Status st = f->GetReal(c, vr, n, v);
+    for (size_t i = 0; st == fmi2OK && i < n; ++i) CHECK(isfinite(v[i]), "Real %u = %g", vr[i], v[i]);
+    return st;
+}
+
+fmi2Status set_one(fmi2Component c, fmi2ValueReference vr, double value)
+{
+    return f->SetReal(c, &vr, 1, &value);
 }

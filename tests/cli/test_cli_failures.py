@@ -12,7 +12,7 @@ import pytest
 
 from conftest import leftovers
 from painleve.experiments.case import RANGES
-from test_cli import one_line_error, run
+from helpers.cli_run import one_line_error, run
 
 
 def rewrite_fmu(src, dst, edit):
@@ -190,7 +190,7 @@ def test_ctrl_c_during_a_validation_is_one_line_with_status_130_and_leaves_nothi
     import os
     import signal
     import subprocess
-    from test_cli import painleve_command
+    from helpers.cli_run import painleve_command
     before = leftovers()
     # A sample large enough that the validation (well under a second by default) is still running.
     p = subprocess.Popen(painleve_command() + ["validate", fmu_path, "--sample", "2000", "--report", str(tmp_path / "v.md")],

@@ -16,7 +16,7 @@ import pytest
 
 from painleve.theory import analytic as an
 from painleve.experiments.case import Case
-from test_cli import painleve_command
+from helpers.cli_run import painleve_command
 from conftest import ROOT
 
 README = (ROOT / "README.md").read_text()

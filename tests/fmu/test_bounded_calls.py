@@ -23,6 +23,7 @@ from conftest import ROOT, built_fmu
 
 sys.path.insert(0, str(ROOT / "bench"))
 import bounded_cases as bc  # noqa: E402
+import bounded_runs as br  # noqa: E402
 
 CASES = int(os.environ.get("BOUNDED_CASES", "360"))
 SEED = int(os.environ.get("BOUNDED_SEED", "1"))
@@ -34,9 +35,9 @@ def test_every_call_returns_on_random_legal_cases():
         built_fmu(path.removeprefix("build/"))
     models = bc.read_models()
     cases = bc.issue_cases(models) + [bc.make_case(models, SEED, k) for k in range(CASES)]
-    results = bc.run_cases(models, cases, WALL)
+    results = br.run_cases(models, cases, WALL)
     assert sorted(results) == sorted(case["index"] for case in cases)
-    failed = [(case, results[case["index"]]) for case in cases if results[case["index"]]["outcome"] in bc.FAILURES]
+    failed = [(case, results[case["index"]]) for case in cases if results[case["index"]]["outcome"] in br.FAILURES]
     if failed:
         pytest.fail(f"{len(failed)} of {len(cases)} cases failed:\n" + "\n".join(
             f"{result['outcome'].upper()}: {bc.describe(case)}\n    {result['detail'][:400]}"

@@ -1,0 +1,91 @@
+/* FMI 3.0 bad values: NaN and out of range, refused with a message that names
+ * the variable and its range (fmi3_driver's robustness tests). */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "robustness3.h"
+
+static const Fmi3Api *const f = &api3;
+
+/* ------------------------------------------------------------- values */
+
+/* After fmi3SetFloat64(name = value) was refused: the message names the
+ * variable and the range it must be in. */
+static void check_range_message(const char *name, double value, const char *range)
+{
+    Inst3 in;
+    if (!inst3_reach(&in, M3_INSTANTIATED, false)) return;
+    fmi3ValueReference vr = 0;
+    for (int k = 1; k <= MD_N_VARIABLES; ++k)
+        if (!strcmp(md_var(k)->name, name)) vr = md_var(k)->vr;
+    const fmi3Status st = f->SetFloat64(in.c, &vr, 1, &value, 1);
+    CHECK(st == fmi3Error, "fmi3SetFloat64(%s = %g): %s, expected fmi3Error", name, value, status3_name(st));
+    char named[64];
+    snprintf(named, sizeof named, "%s = ", name);
+    CHECK(strstr(harness.last_error, named) && strstr(harness.last_error, range),
+          "fmi3SetFloat64(%s = %g): the message does not name the variable and its range %s: '%s'", name, value,
+          range, harness.last_error);
+    in.state = M3_ERROR;
+    inst3_works(&in, "a value out of range");
+    inst3_free(&in);
+}
+
+void test3_bad_values(void)
+{
+    static const double BAD[] = { NAN, -NAN, INFINITY, -INFINITY, DBL_MAX, -DBL_MAX };
+    for (int index = 1; index <= MD_N_VARIABLES; ++index) {
+        const MdVariable *v = md_var(index);
+        if (v->causality != MD_PARAMETER && !v->state) continue;
+        for (size_t k = 0; k < sizeof BAD / sizeof BAD[0]; ++k) {
+            const fmi3ValueReference vr = v->vr;
+            EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3SetFloat64", f->SetFloat64(c, &vr, 1, &BAD[k], 1));
+        }
+    }
+    /* The ranges of modelDescription.xml (min, max). */
+    check_range_message("epsilon", 0, "[1e-08, 1]");
+    check_range_message("epsilon", 2, "[1e-08, 1]");
+    check_range_message("epsilon", NAN, "[1e-08, 1]");
+    check_range_message("alpha", 0, "[1e-06, 1e+06]");
+    check_range_message("mu", -1e-300, "[0, 1e+06]");
+    check_range_message("delta", -1, "[0, 1e+06]");
+    check_range_message("y", 2e6, "[-1e+06, 1e+06]");
+    /* A rejected fmi3SetFloat64 changes nothing (read back in Error, which is Terminated). */
+    Inst3 in;
+    if (inst3_reach(&in, M3_INIT, false)) {
+        const fmi3ValueReference vrs[2] = { VR_EPSILON, VR_ALPHA };
+        const double before = 2e-3, values[2] = { 0.5, -1 };
+        double after = 0;
+        CHECK(f->SetFloat64(in.c, vrs, 1, &before, 1) == fmi3OK, "epsilon = %g refused", before);
+        CHECK(f->SetFloat64(in.c, vrs, 2, values, 2) == fmi3Error, "alpha = -1 accepted");
+        CHECK(f->GetFloat64(in.c, vrs, 1, &after, 1) == fmi3OK && after == before,
+              "a rejected fmi3SetFloat64 changed epsilon from %g to %g", before, after);
+        inst3_free(&in);
+    }
+    /* Bad arguments of the mode changes and steps. */
+    EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3EnterInitializationMode",
+              f->EnterInitializationMode(c, fmi3True, NAN, 0, fmi3False, 0));
+    EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3EnterInitializationMode",
+              f->EnterInitializationMode(c, fmi3True, -1, 0, fmi3False, 0));
+    EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3EnterInitializationMode",
+              f->EnterInitializationMode(c, fmi3False, 0, INFINITY, fmi3False, 0));
+    EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3EnterInitializationMode",
+              f->EnterInitializationMode(c, fmi3False, 0, 1, fmi3True, 0));
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetTime", f->SetTime(c, NAN));
+    double x[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
+    x[3] = NAN;
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, x, ROD_NX));
+    const fmi3ValueReference u = VR_DER_W, k = VR_Y;
+    const double nan_seed = NAN;
+    double out;
+    EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetDirectionalDerivative",
+              f->GetDirectionalDerivative(c, &u, 1, &k, 1, &nan_seed, 1, &out, 1));
+    fmi3Boolean e, t, r;
+    double last;
+    /* The step starts where the last one ended (t = 0.06 after three steps of 0.02). */
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3DoStep", f->DoStep(c, 0.5, 0.01, fmi3True, &e, &t, &r, &last));
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3DoStep", f->DoStep(c, 0.06, 0, fmi3True, &e, &t, &r, &last));
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3DoStep", f->DoStep(c, 0.06, -0.01, fmi3True, &e, &t, &r, &last));
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3DoStep", f->DoStep(c, 0.06, INFINITY, fmi3True, &e, &t, &r, &last));
+}
