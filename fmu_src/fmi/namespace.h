@@ -79,6 +79,7 @@
 #define model_start NAMESPACED(model_start)
 #define model_state_vr NAMESPACED(model_state_vr)
 #define model_step_begin NAMESPACED(model_step_begin)
+#define model_step_end NAMESPACED(model_step_end)
 #define model_stored NAMESPACED(model_stored)
 #define model_touch NAMESPACED(model_touch)
 #define model_update NAMESPACED(model_update)

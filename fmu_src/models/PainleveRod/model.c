@@ -115,6 +115,13 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     return ok;
 }
 
+/* ------------------------------------------- step means (Co-Simulation) */
+
+void model_step_end(Model *m, double elapsed)
+{
+    (void)m, (void)elapsed;   /* no step means */
+}
+
 /* ------------------------------------------------ partial derivatives */
 
 /* The column of parameter vr in RodPartials (ROD_P_*). */
