@@ -101,6 +101,7 @@
 #define instance_reset NAMESPACED(instance_reset)
 #define instance_set_logging NAMESPACED(instance_set_logging)
 #define instance_set_states NAMESPACED(instance_set_states)
+#define instance_set_tolerance NAMESPACED(instance_set_tolerance)
 #define instance_snapshot_deserialize NAMESPACED(instance_snapshot_deserialize)
 #define instance_snapshot_restore NAMESPACED(instance_snapshot_restore)
 #define instance_snapshot_serialize NAMESPACED(instance_snapshot_serialize)
