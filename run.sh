@@ -51,7 +51,7 @@ importer_setup() {
     "$cargo" install --quiet --locked --version "$FMI_SIM_VERSION" --root "$TOOLS" fmi-sim
 }
 
-# SUNDIALS 7 for tests/test_sundials7.py (Debian 12 has 6): the sources that
+# SUNDIALS 7 for tests/fmu/test_sundials7.py (Debian 12 has 6): the sources that
 # the crates.io crate sundials-sys vendors (0.6.2: SUNDIALS 7.1.1), fetched
 # by cargo and built once, static, CVODE alone, into .tools/ (about 10 s).
 SUNDIALS_SYS_VERSION=0.6.2
@@ -84,7 +84,7 @@ sundials7_setup() {
     rm -rf "$work"
 }
 
-# More test-only importers (tests/other_importers.py): libcosim and ecos from PyPI
+# More test-only importers (tests/helpers/other_importers.py): libcosim and ecos from PyPI
 # (tests/importers/requirements.txt; ecos's library needs Debian's libtbb12), FMI4j and
 # JavaFMI from Maven Central (tests/importers/jvm/pom.xml, compiled with the machine's
 # JDK and Maven, else Debian's).

@@ -7,7 +7,7 @@ of running one, side by side in one process run, interleaved.
 Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
   fmpy ME simulate_fmu  fmpy.simulate_fmu(CVode) from the .fmu, one call per case
   fmpy ME fast loop     painleve Experiment: fmpy's CVode from event to event
-                        (painleve.me_loop), one instance, fmi2Reset between cases
+                        (painleve.fmu.me_fast_loop), one instance, fmi2Reset between cases
   fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
   fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
   fmpy CS fast loop     painleve Experiment(fmi_type="CoSimulation"): fmi2DoStep, 4 eps apart
@@ -47,11 +47,11 @@ sys.path.insert(0, str(HERE))
 
 import fmpy                                              # noqa: E402
 from native_driver import run_native                     # noqa: E402
-from painleve.experiments import reference                           # noqa: E402
+from painleve.experiments import reference                      # noqa: E402
+from painleve.experiments.case import Case                      # noqa: E402
+from painleve.experiments.outcome import outcome_of_trajectory  # noqa: E402
+from painleve.fmu.experiment import OUTPUTS, Experiment         # noqa: E402
 from painleve.theory import analytic as an                      # noqa: E402
-from painleve.experiments.case import Case                           # noqa: E402
-from painleve.fmu.experiment import OUTPUTS, Experiment      # noqa: E402
-from painleve.experiments.outcome import outcome_of_trajectory       # noqa: E402
 
 FMU = ROOT / "build" / "PainleveRod.fmu"
 NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"

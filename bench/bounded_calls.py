@@ -1,11 +1,11 @@
-"""Benchmark of bounded calls: the random legal cases of tests/test_bounded_calls.py
+"""Benchmark of bounded calls: the random legal cases of tests/fmu/test_bounded_calls.py
 (bench/bounded_cases.py), a few thousand by default, and a table per model x FMI
 version x interface (Model Exchange per solver): cases, hangs, crashes, Zeno
 errors, other errors, Discards, runs where fmpy's CVode gave up, and the slowest
 single call (its time, the call, its case). Issue 23's hangs run first (negative
 case numbers). Nothing is asserted: a report.
 
-    python bench/bounded_calls.py [--cases N] [--seed S] [--wall SECONDS]
+    python bench/bounded_calls.py [--cases N] [--seed S] [--wall SECONDS] [--show error discard]
     python bench/bounded_calls.py --seed S --only K [K...]    replay cases (their values and outcomes)
 """
 import argparse
@@ -27,6 +27,8 @@ def main(argv=None):
     parser.add_argument("--wall", type=float, default=10.0, help="a case's wall limit, seconds (a hang past it)")
     parser.add_argument("--only", type=int, nargs="*", help="run just these cases (negative: issue 23's)")
     parser.add_argument("--no-issue-cases", action="store_true")
+    parser.add_argument("--show", nargs="*", default=[], metavar="OUTCOME",
+                        help="print the cases with these outcomes too (e.g. error discard); failures always")
     args = parser.parse_args(argv)
     models = bc.read_models()
     issue = {case["index"]: case for case in bc.issue_cases(models)}
@@ -39,7 +41,7 @@ def main(argv=None):
     verbose = args.only is not None
 
     def progress(case, result):
-        if verbose or result["outcome"] in bc.FAILURES:
+        if verbose or result["outcome"] in bc.FAILURES or result["outcome"] in args.show:
             print(f"{result['outcome'].upper()} {bc.describe(case)}\n    {result['detail'][:300]}"
                   f"\n    slowest call {result['slowest'][0]:.3f} s: {result['slowest'][1][:120]}", flush=True)
 

@@ -11,7 +11,7 @@
 # With no TARGET: every fuzz target (fuzz_fmi*, fuzz_bounded*). C_BUILD names a
 # build of tests/c to use (default: build/c-robustness, configured and built here
 # with clang, -j 2); OUT the output directory (default: a new /tmp/fuzz-campaign-*).
-# FUZZ_INPUT_TIMEOUT (10 s) is the time one input may take before it counts as a hang.
+# FUZZ_INPUT_TIMEOUT (20 s) is the time one input may take before it counts as a hang.
 set -euo pipefail
 
 if [ $# -lt 1 ] || ! [[ "${!#}" =~ ^[0-9]+$ ]]; then
@@ -23,7 +23,7 @@ TARGETS=("${@:1:$#-1}")
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 C_BUILD=${C_BUILD:-$ROOT/build/c-robustness}
 OUT=${OUT:-$(mktemp -d /tmp/fuzz-campaign-XXXXXX)}
-TIMEOUT=${FUZZ_INPUT_TIMEOUT:-10}
+TIMEOUT=${FUZZ_INPUT_TIMEOUT:-20}
 PYTHON=${PYTHON:-$ROOT/.venv/bin/python}
 [ -x "$PYTHON" ] || PYTHON=python3
 
@@ -41,10 +41,14 @@ for target in "${TARGETS[@]}"; do
     dir=$OUT/$target
     mkdir -p "$dir/corpus" "$dir/findings"
     cp "$ROOT"/tests/c/corpus/* "$dir/corpus/"
-    # the outer timeout only guards against libFuzzer itself not stopping
+    # the outer timeout only guards against libFuzzer itself not stopping; interrupted, the script stops it
     timeout --kill-after=30 $((SECONDS_EACH + 300)) "$C_BUILD/$target" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 \
         -ignore_ooms=1 -max_total_time="$SECONDS_EACH" -timeout="$TIMEOUT" -rss_limit_mb=2048 -use_value_profile=1 \
-        -artifact_prefix="$dir/findings/" -print_final_stats=1 "$dir/corpus" >"$dir/log" 2>&1 || true
+        -artifact_prefix="$dir/findings/" -print_final_stats=1 "$dir/corpus" >"$dir/log" 2>&1 &
+    fuzzer=$!
+    trap 'kill -TERM $fuzzer 2>/dev/null; exit 130' INT TERM
+    wait $fuzzer || true
+    trap - INT TERM
     # fork mode's status lines: "#RUNS: cov: N ft: N corp: N exec/s: N oom/timeout/crash: a/b/c time: Ns ..."
     last=$(grep -E '^#[0-9]+: cov:' "$dir/log" | tail -1 || true)
     runs=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$last")

@@ -54,7 +54,7 @@ def _parse(stdout, cases):
 
 
 def run_native(executable, fmu_path, cases, *, rtol=None, repeat=1, jacobian="dq", timeout=None):
-    """Runs `cases` (painleve.fmu.experiment.Case) through `executable` on the FMU at
+    """Runs `cases` (painleve.experiments.case.Case) through `executable` on the FMU at
     `fmu_path` (a .fmu, extracted here to a temporary directory, an extracted FMU
     directory, or its binaries/linux64/*.so); one dict per case. rtol None: the
     harness's min(1e-6, eps/100) per case. Raises RuntimeError with the driver's

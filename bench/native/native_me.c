@@ -6,7 +6,7 @@
  *
  * Each line of stdin is one case, "theta0 phi0 v0 delta epsilon w10 alpha mu"
  * (blank lines and lines starting with '#' are skipped). Each case runs as the
- * harness's fmpy fast loop runs it (python_harness/painleve/experiment.py):
+ * harness's fmpy fast loop runs it (python_harness/painleve/fmu/experiment.py):
  * on one instance, fmi2Reset between runs, the rod on the floor at t = 0
  * (x = 0, y = 0, w = epsilon w10), stopped at the event where the rod, having
  * touched, is back at y = 0 moving up (contact false, y >= 0).

@@ -37,7 +37,7 @@
 #define rod_normal_force NAMESPACED(rod_normal_force)
 #define rod_partials NAMESPACED(rod_partials)
 
-/* models/PainleveRodSI/rod_si_partials.c (below fmu_src) */
+/* fmu_src/models/PainleveRodSI/rod_si_partials.c */
 #define si_partial NAMESPACED(si_partial)
 
 /* rod_record.c: the event iteration of a rod model */

@@ -301,7 +301,7 @@ static int wanted_side(const RodParams *p, RodMode m, int i, const double x[ROD_
 {
     switch (i) {
     case ROD_Z_Y: return m.contact ? -1 : +1;
-    case ROD_Z_FORCE: return m.contact ? +1 : -1;
+    case ROD_Z_FORCE: return m.contact ? +1 : x[ROD_Y] > 0 ? 0 : -1;   /* above the floor h does not decide */
     case ROD_Z_SLIP: return sticking(m) ? -1 : m.slip;
     case ROD_Z_AUX:
         if (m.contact) return m.slip == 0 ? +1 : 0;
@@ -321,7 +321,7 @@ static int steepest_state(const RodParams *p, RodMode m, int i, const double x[R
     double largest = 0;
     for (int j = 0; j < ROD_NX; ++j) {
         for (int k = 0; k < ROD_NX; ++k) trial[k] = x[k];
-        trial[j] += 1e-6 * nominal[j];
+        trial[j] += fmax(1e-6 * nominal[j], 1e-9 * fabs(x[j]));  /* seen above the rounding of a deep state */
         rod_event_indicators(p, m, trial, z);
         const double change = z[i] - z0[i];
         if (fabs(change) > largest) {
@@ -339,6 +339,24 @@ static bool clear_of(double z, double noise, int side)
     return sign_of(z) == side && fabs(z) > noise;
 }
 
+/* Moves x[state] by the smallest step, doubling from 1e-15 margin nominal up to the
+ * nominal (or 1e-6 of the state, deep in the floor where the nominal is below its
+ * rounding), that leaves indicator i clear of margin times its rounding error on `side`. */
+static bool leave_surface(const RodParams *p, RodMode m, double x[ROD_NX], int i, int side, int state,
+                          int direction, double nominal, double margin)
+{
+    double z[ROD_NZ], noise[ROD_NZ];
+    const double start = x[state], largest = fmax(nominal, 1e-6 * fabs(start));
+    for (double step = 1e-15 * margin * nominal; step < largest; step *= 2) {
+        x[state] = start + side * direction * step;
+        rod_event_indicators(p, m, x, z);
+        indicator_noise(p, m, x, noise);
+        if (clear_of(z[i], margin * noise[i], side)) return true;
+    }
+    x[state] = start;
+    return false;
+}
+
 bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved)
 {
     double z[ROD_NZ], nominal[ROD_NX], noise[ROD_NZ];
@@ -352,15 +370,9 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], doub
         int direction = 0;
         const int state = steepest_state(p, m, i, x, nominal, &direction);
         if (state < 0) return false;
-        const double start = x[state];
-        bool left = false;
-        /* The smallest step, doubling from 1e-15 nominal, that leaves the surface. */
-        for (double step = 1e-15 * margin * nominal[state]; step < nominal[state] && !left; step *= 2) {
-            x[state] = start + side * direction * step;
-            rod_event_indicators(p, m, x, z);
-            indicator_noise(p, m, x, noise);
-            left = clear_of(z[i], margin * noise[i], side);
-        }
+        /* A margin the nominal cannot reach falls back to the plain one (clear of the rounding). */
+        const bool left = leave_surface(p, m, x, i, side, state, direction, nominal[state], margin) ||
+                          (margin > 1 && leave_surface(p, m, x, i, side, state, direction, nominal[state], 1));
         *moved = true;
         if (!left) return false;
     }
@@ -380,6 +392,7 @@ RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX]
         *m = n;
         if (!same || changed) continue;
         const bool off = rod_move_off_surfaces(p, *m, x, margin, &moved);
+        margin = 1;   /* a later round moves only what the decision moved back onto a surface */
         *x_changed |= moved;
         if (!off) return ROD_STUCK_ON_SURFACE;
         if (!moved) return ROD_SETTLED;

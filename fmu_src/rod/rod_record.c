@@ -72,11 +72,14 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
     r->initial_event = false;
     const RodMode before = r->mode;
     if (floor_jumped && x[ROD_V] != 0) r->mode.slip = x[ROD_V] > 0 ? +1 : -1;
-    /* After an event that switched nothing, the importer's solver came back to a surface
-     * the state had been moved off: its error exceeds the move. Each such return moves
-     * twice as far, so the chatter ends where the motion goes on (docs/bounded_calls.md). */
+    /* An event that switched nothing, or another at the same instant, means the solver came
+     * straight back to a surface the state had been moved off: its error exceeds the move.
+     * Each such event moves twice as far, so the chatter ends where the motion goes on
+     * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
+    const int again = r->returns + (time - r->instant <= 1e-12 * (1 + fabs(time)) ? r->events_at_instant : 0);
     bool moved;
-    const RodEventResult result = rod_event_update(p, &r->mode, x, ldexp(1.0, r->returns), &moved);
+    const RodEventResult result =
+        rod_event_update(p, &r->mode, x, ldexp(1.0, again < ROD_MAX_RETURNS ? again : ROD_MAX_RETURNS), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
     if (result != ROD_SETTLED) {

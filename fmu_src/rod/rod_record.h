@@ -1,5 +1,5 @@
 /* The event iteration of a model built on rod.c, shared by every such model
- * (models/PainleveRod, models/PainleveRodSI): the mode, the record of its switches,
+ * (fmu_src/models/PainleveRod, fmu_src/models/PainleveRodSI): the mode, the record of its switches,
  * the indicators where integration last restarted, and the Zeno guard. The
  * models differ in units and inputs, not in when and how the rod switches. */
 #ifndef ROD_RECORD_H

@@ -94,8 +94,8 @@ class Bounded:
 
 # PainleveRod's value references (modelDescription.xml; FMI 3.0 numbers them alike).
 ROD = dict(alpha=0, mu=1, delta=2, epsilon=3, x=4, v=5, y=6, w=7, theta=8, phi=9, kappa=24)
-# PainleveRodSI's (models/PainleveRodSI/modelDescription.xml).
-SI = dict(m=0, l=1, J=2, g=3, k=4, c=5, mu=6, y_floor=10, w_floor=11, F_x=13, F_y=14, x=16, v=17, y=18, w=19, theta=20, phi=21)
+# PainleveRodSI's (fmu_src/models/PainleveRodSI/modelDescription.xml).
+SI = dict(m=0, l=1, J=2, g=3, k=4, c=5, mu=6, y_floor=10, w_floor=11, v_floor=12, F_x=13, F_y=14, tau=15, x=16, v=17, y=18, w=19, theta=20, phi=21)
 
 
 def rod_values(**values):
@@ -129,7 +129,7 @@ INPUTS = {
         Fmi3().enter_init(1.56e-6, 0.0).set_float64(ISSUE23_ROD).exit_init().do_step(0.1).do_step(0.1).b,
     "regress-si-issue23-loose-tolerance-step-hangs":
         Fmi2().setup(0.157, 0.0).set_real(ISSUE23_SI).initialize().do_step(0.1).do_step(0.1).b,
-    # tests/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
+    # tests/fmu/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
     "regress3-bounded-case-363-mu-1e6-step-hangs":
         Fmi3().enter_init(0.00016730382132527658, 48.125)
         .set_float64(rod_values(alpha=10.0600042616934, mu=1e6, delta=0.7782685507711189, epsilon=0.00485469810196373))
@@ -141,11 +141,22 @@ INPUTS = {
         Fmi2().setup(48.125, 1.0).set_real(rod_values(alpha=400.05642964899721, mu=400.05642964899721,
                                                       delta=0.00029427271762092817, x=-882.8125))
         .initialize().do_step(2.0).b,
+    # fuzz_bounded_PainleveRodSI's finding: a rod of 0.35 mm and 0.7 g at g = 0.0068, tolerance 8.7e-6, start
+    # time -1606.3125, every state and input -789: single doSteps of 0.2 s and 0.11 s ran 9 and 21 s under the
+    # sanitizers (11 s in the release build).
+    "regress-si-bounded-tiny-rod-slow-steps":
+        Fmi2().setup(8.7332616238284373e-06, -1606.3125)
+        .set_real(si_values(m=0.00069783058485986635, l=0.00034891529242993318, J=5.8152548738322171e-05,
+                            g=0.0068457180374752891, k=13956.611697197328, c=3.1402376318693985,
+                            mu=0.0020934917545795992, y_floor=-789.0625, w_floor=-789.0625, v_floor=-789.0625,
+                            F_x=-789.0625, F_y=-789.0625, tau=-789.0625, x=-789.0625, v=-787.0625, y=-789.0625,
+                            w=-789.0625, theta=-788.0625, phi=-787.0625))
+        .initialize().do_step(0.2).do_step(0.11246826503806982).b,
     # fuzz_bounded's seeds: PainleveRod's 12 parameters, states and inputs kept (6 + 6 bytes; the other
     # models read the step bytes as some of theirs), then steps.
     "seed-bounded-cosim": Bounded(True, 1e-6, 0.0, 12, [24] * 8 + [16] * 4).b,
-    "seed-bounded-model-exchange": Bounded(False, 1e-6, 0.0, 12, [40] * 50).b,
-    "seed-bounded-tolerance-48.125": Bounded(True, 48.125, 48.125, 12, [16, 12]).b,
+    "seed-bounded-model-exchange": Bounded(False, 1e-6, 0.0, 12, [24] * 50).b,
+    "seed-bounded-tolerance-48.125": Bounded(True, 48.125, 48.125, 12, [8, 4]).b,
 }
 
 

@@ -11,10 +11,11 @@
  *           start * 10^[-4, 4], min, max, log-uniform in [min, max], or any double
  *   ...     for each state and input: keep the start value, or start + [-1, 1] * 10^[-8, 3]
  *   ...     steps, one byte each: h = span * 10^-(byte % 64 / 8) (span: the profile's
- *           PROFILE_FUZZ_SPAN), an input set anew before the step when the byte >= 192
+ *           PROFILE_BOUNDED_SPAN, else PROFILE_FUZZ_SPAN), an input set anew before the
+ *           step when the byte >= 192
  *
- * The integrated time of an input is bounded (2 spans) and its calls (32
- * doSteps, 400 Euler steps), not the work: a call's work is the FMU's to bound
+ * The integrated time of an input is bounded (one span) and its calls (8
+ * doSteps, 200 Euler steps), not the work: a call's work is the FMU's to bound
  * (FUZZ_TRACE=1 prints each call with its time). Besides
  * AddressSanitizer and UBSan (and libFuzzer's -timeout: a call that does not
  * return is a finding), it aborts on:
@@ -47,6 +48,10 @@
 #include "fmi_harness.h"
 #endif
 #include "model_structure.h"
+
+#ifndef PROFILE_BOUNDED_SPAN
+#define PROFILE_BOUNDED_SPAN PROFILE_FUZZ_SPAN
+#endif
 
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -314,16 +319,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in = (Bytes){ data, size };
     const uint8_t flags = take(&in);
     const bool cs = flags & 1;
-    const double span = PROFILE_FUZZ_SPAN;
+    const double span = PROFILE_BOUNDED_SPAN;
     Instance c = instantiate(cs, flags & 8);
     INVARIANT(c != NULL, "instantiation failed");
     double t;
     int st = initialize(c, flags, &t, span);
     if (!cs && st <= ST_WARNING) st = event_iteration(c);
-    double left = 2 * span; /* integrated time */
-    /* The calls of an input are bounded too, so that -timeout is a bound on one call's work:
-     * 32 doSteps (each may use the FMU's whole budget) or 400 Euler steps (each a few cheap calls). */
-    const int max_steps = cs ? 32 : 400;
+    double left = span; /* integrated time */
+    /* The calls of an input are bounded too, so that -timeout bounds one call's work: 8 doSteps (each
+     * may use the FMU's whole budget: up to a second under the sanitizers) or 200 Euler steps (each a
+     * few cheap calls and at most one event iteration). */
+    const int max_steps = cs ? 8 : 200;
     for (int steps = 0; st <= ST_WARNING && in.n > 0 && steps < max_steps; ++steps) {
         const uint8_t sel = take(&in);
         const double h = span * pow(10.0, -(double)(sel % 64) / 8.0);

@@ -1,6 +1,12 @@
 """Drives the FMU through the harness for the tests, and reads trajectories the way a physicist would."""
-import numpy as np
+import math
 
+import fmpy
+import numpy as np
+import pytest
+
+from painleve.experiments.case import Case
+from painleve.experiments.outcome import outcome_of_trajectory
 from painleve.fmu.experiment import Experiment
 
 OUTPUTS = ("x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact")
@@ -13,6 +19,16 @@ def simulate(fmu, stop_time, *, solver="CVode", rtol=1e-6, step_size=None, outpu
                                           relative_tolerance=rtol, output=OUTPUTS, solver=solver, step_size=step_size)
     assert np.all(np.isfinite(result["time"])), "time is not finite"
     return result
+
+
+def default_stop_time(fmu):
+    """The stop time of the FMU's DefaultExperiment."""
+    return float(fmpy.read_model_description(fmu).defaultExperiment.stopTime)
+
+
+def co_simulation_on_grid(fmu, stop_time, steps):
+    """fmpy's Co-Simulation of the default experiment, every output on the grid stop_time/steps."""
+    return fmpy.simulate_fmu(fmu, fmi_type="CoSimulation", output_interval=stop_time / steps, output=list(OUTPUTS))
 
 
 def mode_changes(result):
@@ -50,3 +66,21 @@ def energy_gradient(x, alpha, epsilon, contact):
     Xd, Yd = v + ph * s, w + ph * c
     return np.array([0.0, Xd, 1 + (y / epsilon**2 if contact else 0.0), Yd, Xd * ph * c - Yd * ph * s + c,
                      Xd * s + Yd * c + ph / alpha])
+
+
+def theorem_bound(case):
+    """Theorem 1's error, O(eps ln 1/eps), with the constant the importers' runs keep to."""
+    return 3 * case.epsilon * math.log(1 / case.epsilon)
+
+
+def assert_default_experiment_ends_in_flight_after_an_iwc(name, r, stop_time):
+    """An importer's run of the default experiment (the modelDescription's start values, Case()): to the
+    stop time, finite, an IWC whose w is e(delta, theta0) v0 within Theorem 1's bound, then lift-off."""
+    case = Case()
+    assert r["time"][-1] == pytest.approx(stop_time, rel=1e-12)
+    for field in r.dtype.names:
+        assert np.all(np.isfinite(r[field])), f"{name}: {field} is not finite"
+    outcome = outcome_of_trajectory(case, r, exact_events=False)
+    assert outcome.iwc, f"{name}: no stick before lift-off"
+    assert abs(outcome.w_error) < theorem_bound(case)             # Theorem 1: w -> e(delta, theta0) v0
+    assert r["w"][-1] > 0 and not r["contact"][-1]                # lifted off, still rising at the stop time

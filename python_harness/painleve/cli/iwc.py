@@ -126,6 +126,6 @@ def iwc_report(case, o):
     rows += [
              ("compression / stick / lift-off / flight back",
               f"{_fmt(o.compression)} / {_fmt(o.stick)} / {_fmt(o.lift_off)} / {_fmt(o.flight_back)}", "",
-              "durations (see painleve.outcome)"),
+              "durations (see painleve.experiments.outcome)"),
              ("events", str(o.events), "", "mode switches")]
     return heading, rows

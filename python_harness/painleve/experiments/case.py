@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from ..theory.analytic import check_case, predict
 
 # The parameters' ranges, the FMU's own (fmu_src/models/PainleveRod/config.h, the min/max of modelDescription.xml;
-# tests/cli/test_cli.py checks they agree): the CLI and sweeps refuse a value outside them before
+# tests/cli/test_cli_failures.py checks they agree): the CLI and sweeps refuse a value outside them before
 # the FMU would. {name: (min, max)}, both ends included.
 RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon": (1e-8, 1.0),
           "kappa": (0.0, 1e6), "beta": (0.0, 1e6)}

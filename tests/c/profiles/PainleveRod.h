@@ -27,6 +27,8 @@
 /* The fuzz target's budget of integrated time per input, and the longest
  * step it takes beyond it (it comes to rest: a step of any size). */
 #define PROFILE_FUZZ_SPAN 2.0
+/* fuzz_bounded's run: at most this span (twice the default experiment), in steps of it down to 1e-8 of it. */
+#define PROFILE_BOUNDED_SPAN 0.2
 #define PROFILE_FUZZ_LONGEST_STEP INFINITY
 
 #endif
