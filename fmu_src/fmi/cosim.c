@@ -149,12 +149,19 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *st
     }
     long before = 0, after = 0;
     if (*steps_left <= 0) return COSIM_BUDGET;
-    if (CVodeSetMaxNumSteps(cs->cvode, *steps_left) != CV_SUCCESS || CVodeGetNumSteps(cs->cvode, &before) != CV_SUCCESS) {
-        snprintf(err, n, "CVODE refused its step budget: %s", cs->error.text);
+    if (CVodeSetMaxNumSteps(cs->cvode, *steps_left) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE refused its step budget: CVodeSetMaxNumSteps failed (%s)", cs->error.text);
+        return COSIM_FAILED;
+    }
+    if (CVodeGetNumSteps(cs->cvode, &before) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
         return COSIM_FAILED;
     }
     const int flag = CVode(cs->cvode, t_end, cs->y, &reached, CV_NORMAL);
-    CVodeGetNumSteps(cs->cvode, &after);
+    if (CVodeGetNumSteps(cs->cvode, &after) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
+        return COSIM_FAILED;
+    }
     *steps_left -= after - before;
     if (flag == CV_TOO_MUCH_WORK) { /* CVODE stands at `reached` with a valid state and can go on */
         model_set_states(m, N_VGetArrayPointer(cs->y));
