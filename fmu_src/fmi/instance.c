@@ -126,6 +126,7 @@ void instance_start(Instance *in)
 {
     char text[256];
     model_start(&in->model, in->time, text, sizeof text);
+    if (in->interface == CO_SIMULATION) model_step_end(&in->model, 0);   /* no step has delivered anything yet */
     instance_log_event(in, "t = %.17g: %s", in->time, text);
 }
 

@@ -136,5 +136,6 @@ Status instance_step(Instance *in, const char *call, double t, double h, StepPol
     const Status s = integrate(in, call, t + h, policy, end);
     if (s == STATUS_ERROR) return s;
     in->last_successful_time = in->time;   /* a Discard's too: the state is valid there */
+    model_step_end(&in->model, fmax(in->time - t, 0));   /* the part it completed: to an event, a spent budget */
     return s;
 }

@@ -103,6 +103,17 @@ void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX],
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[]);
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
 
+/* ------------------------------------------- step means (Co-Simulation) */
+
+/* The step that began at model_step_begin is done, after `elapsed` (> 0; 0 when
+ * it made no progress, and when Co-Simulation's initialization ends: nothing
+ * delivered yet). A model that outputs means over the last step (a contact
+ * force whose impulse a coupled model must receive whatever the contact's
+ * duration) takes them from its own balances over the step. Model Exchange
+ * never calls it: there, where the importer's integrator owns the steps, a
+ * step mean is the quantity now (the mean over a step shrunk to an instant). */
+void model_step_end(Model *m, double elapsed);
+
 /* ------------------------------------------------------- modes, events */
 
 /* The initial mode, decided from the state alone (initialization mode). */

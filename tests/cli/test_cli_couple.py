@@ -36,8 +36,8 @@ def one_line_error(r, status):
 def test_help_explains_every_option():
     r = painleve("--help")
     assert r.returncode == 0
-    for option in ("--rod", "--table", "--master", "--stop", "--step", "--set", "--out", "--ssp", "--csv", "--dpi",
-                   "fmpy", "libcosim", "ecos"):
+    for option in ("--rod", "--table", "--master", "--coupling", "--stop", "--step", "--set", "--out", "--ssp", "--csv",
+                   "--dpi", "fmpy", "libcosim", "ecos", "mean", "instantaneous"):
         assert option in r.stdout, option
 
 
@@ -58,11 +58,32 @@ def test_couple_writes_the_figure_the_table_and_the_archive(master, tmp_path):
     line = next(x for x in r.stdout.splitlines() if x.startswith("impulse of F_N"))
     on_table = float(line.split("on the table ")[1].split()[0])
     assert on_table == pytest.approx(1e-4 * np.sum(table["table.F_N"]), rel=1e-5)
+    # the table held the rod's step means (the default coupling): the momentum balance closes
+    assert "mean coupling" in r.stdout
+    np.testing.assert_array_equal(table["table.F_N"][1:], table["rod.F_N_mean"][:-1])
+    on_rod = float(line.split("on the rod ")[1].split()[0])
+    balance = next(x for x in r.stdout.splitlines() if x.startswith("momentum balance"))
+    residual = float(balance.split("residual ")[1].split()[0])
+    assert on_rod > 0.1 and abs(residual) <= 1e-6 * on_rod, balance
     # the start value is bound in the archive, beside the defaults of both models
     values = start_values(out / "coupled.ssp")
     assert values["table"]["F0"] == 80 and values["table"]["M"] == 10 and values["rod"]["k"] == 2e7
     assert f"master {master}" in r.stdout
     assert list(scratch.iterdir()) == []                      # nothing left behind
+
+
+def test_couple_shows_what_the_instantaneous_coupling_loses(tmp_path):
+    """h = 1e-3 against a contact of 0.2 ms: the IWC at t = 0 is over before the first sample of
+    F_N, so the table held none of its impulse, and the balance misses all of it."""
+    r = painleve("--rod", ROD, "--table", TABLE, "--stop", 0.01, "--step", 1e-3, "--coupling", "instantaneous",
+                 "--out", tmp_path / "couple.png", "--dpi", 40)
+    assert r.returncode == 0, r.stderr
+    line = next(x for x in r.stdout.splitlines() if x.startswith("impulse of F_N"))
+    on_rod, on_table = (float(line.split(f"on the {side} ")[1].split()[0]) for side in ("rod", "table"))
+    balance = next(x for x in r.stdout.splitlines() if x.startswith("momentum balance"))
+    residual = float(balance.split("residual ")[1].split()[0])
+    assert on_table == 0 and on_rod > 0.1
+    assert residual == pytest.approx(on_rod, rel=1e-3)
 
 
 @pytest.mark.parametrize("args, expected", [

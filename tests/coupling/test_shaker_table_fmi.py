@@ -58,7 +58,7 @@ def test_config_h_lists_the_variables_of_the_model_description(table_path):
     assert units == dict(M="kg", K="N/m", C="N.s/m", F0="N", frequency="Hz", belt_speed="m/s", F_N="N",
                               F_T="N", position="m", velocity="m/s", **{"der(position)": "m/s"},
                               **{"der(velocity)": "m/s2"}, belt_velocity="m/s", drive_force="N", energy="J",
-                              belt_power="W")
+                              belt_power="W", mount_force="N", mount_force_mean="N", drive_force_mean="N")
     assert md.numberOfEventIndicators == 0 and len(md.derivatives) == 2
 
 

@@ -38,12 +38,22 @@
     ROD_RECORD_TIMES(VARIABLE)                                                                     \
     VARIABLE(KAPPA, "kappa", REAL, PARAMETER, params.kappa, 0, 1e6)                                \
     VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
-    ROD_RECORD_MODES(VARIABLE)
+    ROD_RECORD_MODES(VARIABLE)                                                                     \
+    VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, mean_out[MEAN_F_N], 0, 0)                     \
+    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, mean_out[MEAN_F_T], 0, 0)
 
 /* The model's data beyond its variables that an FMU state must carry
  * (the event log's reference and the event guard): INTERNAL(name, field, type). */
 #define MODEL_INTERNALS(INTERNAL)                         \
-    ROD_RECORD_INTERNALS(INTERNAL)
+    ROD_RECORD_INTERNALS(INTERNAL)                        \
+    INTERNAL("step_mean_F_N", step_mean[MEAN_F_N], REAL)  \
+    INTERNAL("step_mean_F_T", step_mean[MEAN_F_T], REAL)  \
+    INTERNAL("step_vy_cm", step_start[MEAN_F_N], REAL)    \
+    INTERNAL("step_vx_cm", step_start[MEAN_F_T], REAL)    \
+    INTERNAL("means_held", means_held, BOOLEAN)
+
+/* The step means (model.h) and the centre of mass's velocity components that give them. */
+enum { MEAN_F_N, MEAN_F_T };
 
 /* The model's data: parameters, states, modes, what the events record, and
  * derived values and partial derivatives cached until a change marks them stale. Plain data with no
@@ -52,8 +62,11 @@ typedef struct {
     RodParams params;
     double x[ROD_NX];
     RodRecord run;                               /* the mode and what its events recorded */
+    double step_mean[2];  /* F_N, F_T averaged over the last Co-Simulation step (the impulse / the step) */
+    double step_start[2]; /* vy_cm, vx_cm when the step began */
+    bool means_held;      /* Co-Simulation: F_N_mean, F_T_mean are step_mean; else (Model Exchange) F_N, F_T */
     bool stale, partials_stale;
-    double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT];
+    double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT], mean_out[2];
     RodPartials partials;
 } Model;
 

@@ -38,7 +38,17 @@ void model_update(Model *m)
     m->out[ROD_OUT_F_N] = rod_normal_force(&m->params, m->run.mode, m->x);
     m->out[ROD_OUT_F_T] = rod_friction_force(&m->params, m->run.mode, m->x);
     m->out[ROD_OUT_ENERGY] = rod_energy(&m->params, m->run.mode, m->x);
+    m->mean_out[MEAN_F_N] = m->means_held ? m->step_mean[MEAN_F_N] : m->out[ROD_OUT_F_N];
+    m->mean_out[MEAN_F_T] = m->means_held ? m->step_mean[MEAN_F_T] : m->out[ROD_OUT_F_T];
     m->stale = false;
+}
+
+/* The centre of mass's velocity in the paper's units (l = 1): vy = w + phi cos(theta),
+ * vx = v + phi sin(theta), at the places of the forces they give (MEAN_F_N, MEAN_F_T). */
+static void centre_velocity(const Model *m, double v_cm[2])
+{
+    v_cm[MEAN_F_N] = m->x[ROD_W] + m->x[ROD_PHI] * cos(m->x[ROD_THETA]);
+    v_cm[MEAN_F_T] = m->x[ROD_V] + m->x[ROD_PHI] * sin(m->x[ROD_THETA]);
 }
 
 void model_get_indicators(Model *m, double z[])
@@ -60,7 +70,8 @@ bool model_input_set(Model *m, unsigned int vr, double time)
 
 void model_step_begin(Model *m, double time)
 {
-    (void)m, (void)time;
+    (void)time;
+    centre_velocity(m, m->step_start);   /* the momentum the step's impulses change */
 }
 
 void model_set_time(Model *m, double time)
@@ -115,6 +126,20 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     return ok;
 }
 
+/* ------------------------------------------- step means (Co-Simulation) */
+
+/* The floor's impulses over the step from the rod's momentum (mass 1, weight 1 in the paper's
+ * units): dvy_cm = int F_N - h, dvx_cm = -int F_T; as PainleveRodSI's (docs/si_model.md). */
+void model_step_end(Model *m, double elapsed)
+{
+    double now[2];
+    centre_velocity(m, now);
+    m->step_mean[MEAN_F_N] = elapsed > 0 ? (now[MEAN_F_N] - m->step_start[MEAN_F_N]) / elapsed + 1 : 0;
+    m->step_mean[MEAN_F_T] = elapsed > 0 ? -(now[MEAN_F_T] - m->step_start[MEAN_F_T]) / elapsed : 0;
+    m->means_held = true;
+    model_touch(m);
+}
+
 /* ------------------------------------------------ partial derivatives */
 
 /* The column of parameter vr in RodPartials (ROD_P_*). */
@@ -132,6 +157,14 @@ static int parameter_column(unsigned int vr)
 
 const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
+    /* A step mean is the past's in Co-Simulation; in Model Exchange the force itself. */
+    if (unknown == VR_F_N_MEAN || unknown == VR_F_T_MEAN) {
+        if (m->means_held) {
+            *value = 0;
+            return NULL;
+        }
+        unknown = unknown == VR_F_N_MEAN ? VR_F_N : VR_F_T;
+    }
     if (m->partials_stale) {
         rod_partials(&m->params, m->run.mode, m->x, &m->partials);
         m->partials_stale = false;
@@ -153,5 +186,7 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
 
 const char *model_internals_implausible(const Model *m)
 {
+    for (int i = 0; i < 2; ++i)
+        if (!isfinite(m->step_mean[i]) || !isfinite(m->step_start[i])) return "step_mean_F_N";
     return rod_record_implausible(&m->run);
 }

@@ -49,17 +49,27 @@
     VARIABLE(GAP, "gap", REAL, CALCULATED, out[SI_GAP], 0, 0)                                      \
     VARIABLE(SLIP, "slip", REAL, CALCULATED, out[SI_SLIP], 0, 0)                                   \
     ROD_RECORD_TIMES(VARIABLE)                                                                     \
-    ROD_RECORD_MODES(VARIABLE)
+    ROD_RECORD_MODES(VARIABLE)                                                                     \
+    VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, out[SI_F_N_MEAN], 0, 0)                       \
+    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, out[SI_F_T_MEAN], 0, 0)
 
 #define MODEL_INTERNALS(INTERNAL)                             \
     ROD_RECORD_INTERNALS(INTERNAL) \
     INTERNAL("v_floor_decided", v_floor_decided, REAL)    \
     INTERNAL("time", time, REAL)                          \
     INTERNAL("t_floor", t_floor, REAL)                    \
-    INTERNAL("floor_moves", floor_moves, BOOLEAN)
+    INTERNAL("floor_moves", floor_moves, BOOLEAN)         \
+    INTERNAL("step_mean_F_N", step_mean[SI_MEAN_F_N], REAL) \
+    INTERNAL("step_mean_F_T", step_mean[SI_MEAN_F_T], REAL) \
+    INTERNAL("step_vx_cm", step_start[SI_MEAN_F_T], REAL)  \
+    INTERNAL("step_vy_cm", step_start[SI_MEAN_F_N], REAL)  \
+    INTERNAL("means_held", means_held, BOOLEAN)
 
 /* Outputs beyond the states and derivatives. */
-enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_NOUT };
+enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_F_N_MEAN, SI_F_T_MEAN,
+       SI_NOUT };
+/* The step means' order (model_step_integrands_at). */
+enum { SI_MEAN_F_N, SI_MEAN_F_T };
 
 /* The model's data: SI parameters, inputs, SI states (the rod's contact end
  * (x, y) and its velocity (v, w), theta, phi), the event record; and, derived
@@ -74,6 +84,9 @@ typedef struct {
     double time;            /* the instance's (model_set_time) */
     double t_floor;         /* when y_floor was last set: in Co-Simulation the floor moves on at w_floor */
     bool floor_moves;       /* a Co-Simulation step has begun: the floor moves between communication points */
+    double step_mean[2];    /* F_N, F_T averaged over the last Co-Simulation step (the impulse / the step) */
+    double step_start[2];   /* vy_cm, vx_cm when the step began */
+    bool means_held;        /* Co-Simulation: F_N_mean, F_T_mean are step_mean; else (Model Exchange) F_N, F_T */
     bool stale, partials_stale;
     RodParams rod;        /* alpha, mu, delta, epsilon and the loads in units of m g, m g l */
     double xs[ROD_NX];    /* the state in the paper's units, in the floor's frame */

@@ -117,6 +117,17 @@ static void outputs(Model *m)
     const double spring = m->run.mode.contact ? 0.5 * m->k * gap * gap : 0.0;
     out[SI_ENERGY] = 0.5 * m->m * (out[SI_VX_CM] * out[SI_VX_CM] + out[SI_VY_CM] * out[SI_VY_CM]) +
                      0.5 * m->J * phi * phi + mg * out[SI_Y_CM] + spring;
+    out[SI_F_N_MEAN] = m->means_held ? m->step_mean[SI_MEAN_F_N] : out[SI_F_N];
+    out[SI_F_T_MEAN] = m->means_held ? m->step_mean[SI_MEAN_F_T] : out[SI_F_T];
+}
+
+/* The velocity of the centre of mass, vy_cm = w + l phi cos(theta) and vx_cm = v + l phi sin(theta),
+ * at the places of the forces they give (SI_MEAN_F_N, SI_MEAN_F_T). */
+static void centre_velocity(const Model *m, double v_cm[2])
+{
+    const double *x = m->x, lphi = m->l * x[ROD_PHI];
+    v_cm[SI_MEAN_F_N] = x[ROD_W] + lphi * cos(x[ROD_THETA]);
+    v_cm[SI_MEAN_F_T] = x[ROD_V] + lphi * sin(x[ROD_THETA]);
 }
 
 void model_update(Model *m)
@@ -165,6 +176,7 @@ void model_step_begin(Model *m, double time)
 {
     (void)time;
     m->floor_moves = true;
+    centre_velocity(m, m->step_start);   /* the momentum the step's impulses change */
     model_touch(m);
 }
 
@@ -189,6 +201,24 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
     for (int i = 0; i < ROD_NX; ++i)
         for (int j = 0; j < ROD_NX; ++j) J[i][j] = (i % 2 ? r.s.rate[i] * J[i][j] / r.s.scale[j] : 0);
     J[ROD_X][ROD_V] = J[ROD_Y][ROD_W] = J[ROD_THETA][ROD_PHI] = 1;
+}
+
+/* ------------------------------------------- step means (Co-Simulation) */
+
+/* The floor's impulses over the step are what the rod's momentum says it received
+ * (si_model.md, Momentum): m dvy_cm = (F_y - m g) h + int F_N, m dvx_cm = F_x h - int F_T,
+ * the loads held over the step. The solver integrated the forces into the momentum, so
+ * a coupled floor that takes these impulses conserves the momentum of the two bodies to
+ * rounding (a separate quadrature of F_N would differ from it by the solver's error). */
+void model_step_end(Model *m, double elapsed)
+{
+    double now[2];
+    centre_velocity(m, now);
+    const double dvy = now[SI_MEAN_F_N] - m->step_start[SI_MEAN_F_N], dvx = now[SI_MEAN_F_T] - m->step_start[SI_MEAN_F_T];
+    m->step_mean[SI_MEAN_F_N] = elapsed > 0 ? m->m * dvy / elapsed + m->m * m->g - m->F_y : 0;
+    m->step_mean[SI_MEAN_F_T] = elapsed > 0 ? m->F_x - m->m * dvx / elapsed : 0;
+    m->means_held = true;
+    model_touch(m);
 }
 
 /* ------------------------------------------------------- modes, events */
@@ -237,6 +267,15 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 
 const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
+    /* A step mean is the past's in Co-Simulation (nothing now moves it); in Model
+     * Exchange it is the force itself, with the force's partials. */
+    if (unknown == VR_F_N_MEAN || unknown == VR_F_T_MEAN) {
+        if (m->means_held) {
+            *value = 0;
+            return NULL;
+        }
+        unknown = unknown == VR_F_N_MEAN ? VR_F_N : VR_F_T;
+    }
     /* A pair the model description does not declare is 0 by the structure of the
      * equations; the chain rule below would give round-off there. */
     if (!model_depends(unknown, known)) {
@@ -258,5 +297,8 @@ const char *model_internals_implausible(const Model *m)
 {
     if (!isfinite(m->v_floor_decided)) return "v_floor_decided";
     if (!isfinite(m->t_floor) || !isfinite(m->time)) return "t_floor";
+    if (!isfinite(m->step_mean[SI_MEAN_F_N])) return "step_mean_F_N";
+    if (!isfinite(m->step_mean[SI_MEAN_F_T])) return "step_mean_F_T";
+    if (!isfinite(m->step_start[SI_MEAN_F_N]) || !isfinite(m->step_start[SI_MEAN_F_T])) return "step_vy_cm";
     return rod_record_implausible(&m->run);
 }

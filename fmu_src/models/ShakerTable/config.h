@@ -16,7 +16,9 @@
 #define MODEL_NZ 0 /* no modes, no events */
 
 enum { TABLE_Z, TABLE_V };                                           /* the states */
-enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_NOUT }; /* derived outputs */
+enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_OUT_MOUNT, TABLE_OUT_MOUNT_MEAN,
+       TABLE_OUT_DRIVE_MEAN, TABLE_NOUT };                           /* derived outputs */
+enum { TABLE_MEAN_MOUNT, TABLE_MEAN_DRIVE };                         /* the step means' order */
 
 /* Bounds that keep every derived value (K z^2, M v^2, F_T belt_speed) finite. */
 #define STATE_BOUND 1e6
@@ -40,10 +42,18 @@ enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_NOUT }; /*
     VARIABLE(BELT_VELOCITY, "belt_velocity", REAL, CALCULATED, params.belt_speed, 0, 0)    \
     VARIABLE(DRIVE_FORCE, "drive_force", REAL, CALCULATED, out[TABLE_OUT_DRIVE], 0, 0)     \
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[TABLE_OUT_ENERGY], 0, 0)              \
-    VARIABLE(BELT_POWER, "belt_power", REAL, CALCULATED, out[TABLE_OUT_BELT_POWER], 0, 0)
+    VARIABLE(BELT_POWER, "belt_power", REAL, CALCULATED, out[TABLE_OUT_BELT_POWER], 0, 0)   \
+    VARIABLE(MOUNT_FORCE, "mount_force", REAL, CALCULATED, out[TABLE_OUT_MOUNT], 0, 0)     \
+    VARIABLE(MOUNT_FORCE_MEAN, "mount_force_mean", REAL, CALCULATED, out[TABLE_OUT_MOUNT_MEAN], 0, 0) \
+    VARIABLE(DRIVE_FORCE_MEAN, "drive_force_mean", REAL, CALCULATED, out[TABLE_OUT_DRIVE_MEAN], 0, 0)
 
-/* The table has no internals an FMU state must carry beyond its variables. */
-#define MODEL_INTERNALS(INTERNAL)
+/* Beyond its variables an FMU state carries the step means (Co-Simulation). */
+#define MODEL_INTERNALS(INTERNAL)                                      \
+    INTERNAL("step_mean_mount", step_mean[TABLE_MEAN_MOUNT], REAL) \
+    INTERNAL("step_mean_drive", step_mean[TABLE_MEAN_DRIVE], REAL) \
+    INTERNAL("step_time", step_time, REAL)                         \
+    INTERNAL("step_velocity", step_velocity, REAL)                 \
+    INTERNAL("means_held", means_held, BOOLEAN)
 
 typedef struct {
     double M, K, C;            /* mass [kg], stiffness [N/m], damping [N s/m] */
@@ -59,6 +69,9 @@ typedef struct {
     double F_N, F_T;           /* inputs [N] */
     double x[MODEL_NX];        /* z [m], z' [m/s] */
     double time;
+    double step_mean[2];       /* mount and drive force averaged over the last Co-Simulation step */
+    double step_time, step_velocity; /* when the step began, and z' then */
+    bool means_held;           /* Co-Simulation: the *_mean outputs are step_mean; else the forces now */
     bool stale, partials_stale; /* partials_stale: model_common.c's; the partials are not cached */
     double dx[MODEL_NX], out[TABLE_NOUT];
 } Model;

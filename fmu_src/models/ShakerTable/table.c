@@ -34,11 +34,17 @@ static double drive(const TableParams *p, double time)
     return p->F0 * sin(TWO_PI * p->frequency * time);
 }
 
+/* The spring's and the damper's force on the top: what its mount takes up. */
+static double mount(const TableParams *p, const double x[MODEL_NX])
+{
+    return -p->K * x[TABLE_Z] - p->C * x[TABLE_V];
+}
+
 static void derivatives(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     const TableParams *p = &m->params;
     dx[TABLE_Z] = x[TABLE_V];
-    dx[TABLE_V] = (-p->K * x[TABLE_Z] - p->C * x[TABLE_V] + drive(p, time) - m->F_N) / p->M;
+    dx[TABLE_V] = (mount(p, x) + drive(p, time) - m->F_N) / p->M;
 }
 
 void model_update(Model *m)
@@ -51,6 +57,9 @@ void model_update(Model *m)
     m->out[TABLE_OUT_ENERGY] = 0.5 * p->M * m->x[TABLE_V] * m->x[TABLE_V] + 0.5 * p->K * m->x[TABLE_Z] * m->x[TABLE_Z];
     /* The surface takes +F_T along x (the paper's sign): holding belt_speed, the drive does -F_T belt_speed. */
     m->out[TABLE_OUT_BELT_POWER] = -m->F_T * p->belt_speed;
+    m->out[TABLE_OUT_MOUNT] = mount(p, m->x);
+    m->out[TABLE_OUT_MOUNT_MEAN] = m->means_held ? m->step_mean[TABLE_MEAN_MOUNT] : m->out[TABLE_OUT_MOUNT];
+    m->out[TABLE_OUT_DRIVE_MEAN] = m->means_held ? m->step_mean[TABLE_MEAN_DRIVE] : m->out[TABLE_OUT_DRIVE];
     m->stale = false;
 }
 
@@ -79,7 +88,8 @@ bool model_input_set(Model *m, unsigned int vr, double time)
 
 void model_step_begin(Model *m, double time)
 {
-    (void)m, (void)time;
+    m->step_time = time;   /* model_step_end's balance over the step */
+    m->step_velocity = m->x[TABLE_V];
 }
 
 void model_set_time(Model *m, double time)
@@ -107,6 +117,29 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
     J[TABLE_Z][TABLE_V] = 1;
     J[TABLE_V][TABLE_Z] = -p->K / p->M;
     J[TABLE_V][TABLE_V] = -p->C / p->M;
+}
+
+/* ------------------------------------------- step means (Co-Simulation) */
+
+/* Over a step from t0 to t1 = t0 + elapsed, with F_N held: the drive's impulse in
+ * closed form, F0 (cos(w t0) - cos(w t1))/w, and the mount's as the solver
+ * realized it, by the top's momentum, M dz' = int mount + int drive - F_N elapsed.
+ * With the rod's impulses (its own momentum's) the two bodies' momentum then
+ * balances to rounding; how close the mount's is to int(-K z - C z') is the
+ * solver's accuracy (docs/coupling.md). */
+void model_step_end(Model *m, double elapsed)
+{
+    const TableParams *p = &m->params;
+    const double omega = TWO_PI * p->frequency, t0 = m->step_time, t1 = t0 + elapsed;
+    double drive_mean = 0, mount_mean = 0;
+    if (elapsed > 0) {
+        drive_mean = omega > 0 ? p->F0 * (cos(omega * t0) - cos(omega * t1)) / (omega * elapsed) : 0;
+        mount_mean = p->M * (m->x[TABLE_V] - m->step_velocity) / elapsed - drive_mean + m->F_N;
+    }
+    m->step_mean[TABLE_MEAN_MOUNT] = mount_mean;
+    m->step_mean[TABLE_MEAN_DRIVE] = drive_mean;
+    m->means_held = true;
+    model_touch(m);
 }
 
 /* ------------------------------------------------------- modes, events */
@@ -159,20 +192,38 @@ static double acceleration_partial(const Model *m, unsigned int known)
     }
 }
 
+/* d drive_force / d known, drive_force = F0 sin(2 pi f t). */
+static double drive_partial(const Model *m, unsigned int known)
+{
+    const TableParams *p = &m->params;
+    const double omega = TWO_PI * p->frequency, t = m->time;
+    return known == VR_F0 ? sin(omega * t) : known == VR_FREQUENCY ? p->F0 * cos(omega * t) * TWO_PI * t : 0;
+}
+
+/* d mount_force / d known, mount_force = -K z - C v. */
+static double mount_partial(const Model *m, unsigned int known)
+{
+    const TableParams *p = &m->params;
+    switch (known) {
+    case VR_POSITION: return -p->K;
+    case VR_VELOCITY: return -p->C;
+    case VR_K: return -m->x[TABLE_Z];
+    case VR_C: return -m->x[TABLE_V];
+    default: return 0;
+    }
+}
+
 const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
     model_update(m);
     const TableParams *p = &m->params;
-    const double omega = TWO_PI * p->frequency, t = m->time;
     const double z = m->x[TABLE_Z], v = m->x[TABLE_V];
     double d = 0;
     switch (unknown) {
     case VR_DER_POSITION: d = known == VR_VELOCITY; break;
     case VR_DER_VELOCITY: d = acceleration_partial(m, known); break;
     case VR_BELT_VELOCITY: d = known == VR_BELT_SPEED; break;
-    case VR_DRIVE_FORCE:
-        d = known == VR_F0 ? sin(omega * t) : known == VR_FREQUENCY ? p->F0 * cos(omega * t) * TWO_PI * t : 0;
-        break;
+    case VR_DRIVE_FORCE: d = drive_partial(m, known); break;
     case VR_ENERGY:
         d = known == VR_POSITION ? p->K * z
             : known == VR_VELOCITY ? p->M * v
@@ -181,6 +232,10 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
             : 0;
         break;
     case VR_BELT_POWER: d = known == VR_F_T ? -p->belt_speed : known == VR_BELT_SPEED ? -m->F_T : 0; break;
+    case VR_MOUNT_FORCE: d = mount_partial(m, known); break;
+    /* a step mean is the past's in Co-Simulation; in Model Exchange the force itself */
+    case VR_MOUNT_FORCE_MEAN: d = m->means_held ? 0 : mount_partial(m, known); break;
+    case VR_DRIVE_FORCE_MEAN: d = m->means_held ? 0 : drive_partial(m, known); break;
     default: return "the unknown has no partial derivative";
     }
     *value = d;
@@ -191,6 +246,8 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
 
 const char *model_internals_implausible(const Model *m)
 {
-    (void)m; /* no internals */
+    if (!isfinite(m->step_mean[TABLE_MEAN_MOUNT])) return "step_mean_mount";
+    if (!isfinite(m->step_mean[TABLE_MEAN_DRIVE])) return "step_mean_drive";
+    if (!isfinite(m->step_time) || !isfinite(m->step_velocity)) return "step_time";
     return NULL;
 }

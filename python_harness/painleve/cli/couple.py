@@ -13,6 +13,7 @@ from .options import dpi_value, number, output_path, positive
 
 
 def add_parser(sub):
+    from ..coupling.coupled import COUPLINGS
     from ..coupling.masters import MASTERS
     cp = sub.add_parser("couple", allow_abbrev=False, help="the rod on a shaker table, co-simulated from an SSP file",
                         description="Couples PainleveRodSI.fmu (the rod in SI units, with a moving floor as input) "
@@ -21,7 +22,11 @@ def add_parser(sub):
                                     "(SystemStructure.ssd + resources/*.fmu), checks the archive, runs it in a "
                                     "co-simulation master (fixed communication step, Jacobi with zero-order hold) "
                                     "and writes a figure: the rod and the table over time, the forces on both "
-                                    "sides. Prints the impulse of the normal force on each side (equal to O(h)).")
+                                    "sides. The table holds over each step the rod's contact forces averaged over "
+                                    "the step before (the impulse the rod received / h), so it receives exactly the "
+                                    "rod's impulses whatever the contact's duration; --coupling instantaneous hands "
+                                    "it the forces at the communication points instead. Prints the system's momentum "
+                                    "balance (closed to rounding with the step means).")
     cp.add_argument("--rod", metavar="PATH",
                     help=f"the rod's FMU (default {DEFAULT_ROD_FMU} if there is one, else the one installed with "
                          f"the package)")
@@ -31,6 +36,11 @@ def add_parser(sub):
     cp.add_argument("--master", choices=MASTERS, default="fmpy",
                     help="fmpy (fmpy.ssp), libcosim (libcosimpy) or ecos (ecospy); the last two are installed by "
                          "`bash run.sh test` (default %(default)s)")
+    cp.add_argument("--coupling", choices=tuple(COUPLINGS), default="mean",
+                    help="what the table's loads are connected to: the rod's contact forces averaged over the last "
+                         "communication step (mean: the impulse the rod received / h) or their values at the "
+                         "communication points (instantaneous: an impulse between two samples is lost) "
+                         "(default %(default)s)")
     cp.add_argument("--stop", type=positive, default=0.45, metavar="SECONDS", help="stop time (default %(default)s)")
     cp.add_argument("--step", type=positive, default=1e-4, metavar="SECONDS",
                     help="communication step h; the stop time must be a whole number of steps (default %(default)s)")
@@ -50,8 +60,7 @@ def run(args):
 
     import numpy as np
 
-    from ..coupling.coupled import (RECORD, ROD_INPUTS, TABLE_INPUTS, Setup, impulse_on_rod, impulse_on_table,
-                                    write_coupled_ssp)
+    from ..coupling.coupled import RECORD, ROD_INPUTS, TABLE_INPUTS, Setup, write_coupled_ssp
     from ..coupling.masters import MasterUnavailable, run, steps_of
     from ..coupling.ssp_check import check_ssp
     from ..figures.coupled import coupled_figure
@@ -77,7 +86,8 @@ def run(args):
         if getattr(args, option):
             output_path(getattr(args, option), f"painleve couple: --{option}")
     with tempfile.TemporaryDirectory(prefix="painleve-couple-") as work:
-        ssp = write_coupled_ssp(pathlib.Path(work) / "coupled.ssp", rod, table, setup, stop_time=args.stop)
+        ssp = write_coupled_ssp(pathlib.Path(work) / "coupled.ssp", rod, table, setup, stop_time=args.stop,
+                                coupling=args.coupling)
         problems = check_ssp(ssp)
         if problems:
             raise UsageError(f"painleve couple: the SSP is not valid: {problems[0]}"
@@ -100,8 +110,8 @@ def run(args):
     if args.csv:
         np.savetxt(args.csv, np.column_stack([r[name] for name in r.dtype.names]), delimiter=",",
                    header=",".join(r.dtype.names), comments="", fmt="%.17g")
-    on_rod, on_table = impulse_on_rod(r, setup), impulse_on_table(r, args.step)
     print(f"Rod on shaker table: {rod} + {table}, master {args.master} (Jacobi, zero-order hold), "
+          f"{args.coupling} coupling, "
           f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
     contact_time = math.sqrt(rod_si.m / rod_si.k)
     start = (f"theta0 = {case.theta0:.4g}, v0 = {case.v0:.4g}, phi0 = {case.phi0:.4g} (on the table, relative to it)"
@@ -109,16 +119,26 @@ def run(args):
     print(f"rod: alpha = {rod_si.alpha:.4g}, epsilon = {rod_si.epsilon:.4g}, delta = {rod_si.delta:.4g}, "
           f"mu = {rod_si.mu:.4g}; {start}; contact time scale sqrt(m/k) = {contact_time:.3g} s = "
           f"{contact_time / args.step:.3g} h")
-    difference = on_rod - on_table
-    print(f"impulse of F_N over the run: on the rod {on_rod:.6g} N s (its momentum), on the table {on_table:.6g} N s "
-          f"(the inputs it held); difference {difference:+.3g} N s ({difference / on_table:+.2%}), the zero-order "
-          f"hold's error: O(h) once h is well below the contact time (a contact shorter than a step escapes the "
-          f"samples)")
+    print_balance(r, setup, args.step, args.coupling)
     print(f"at t = {args.stop:g}: rod y = {r['rod.y'][-1]:.6g} m, w = {r['rod.w'][-1]:.6g} m/s, "
           f"theta = {r['rod.theta'][-1]:.6g}; table z = {r['table.position'][-1]:.6g} m, "
           f"z' = {r['table.velocity'][-1]:.6g} m/s")
     print(f"figure: {args.out}" + (f"; SSP: {args.ssp}" if args.ssp else "") + (f"; table: {args.csv}" if args.csv else ""))
     return 0
+
+
+def print_balance(r, setup, step, coupling):
+    """The impulses of F_N on both sides and the system's vertical momentum balance."""
+    from ..coupling.coupled import impulse_on_rod, impulse_on_table, momentum_balance
+    b = momentum_balance(r, setup, step, coupling)
+    on_rod, on_table = impulse_on_rod(r, setup), impulse_on_table(r, step)
+    print(f"impulse of F_N over the run: on the rod {on_rod:.9g} N s (its momentum), on the table {on_table:.9g} N s "
+          f"(the inputs it held), in flight {b.in_flight:.3g} N s (the rod's last step: the table holds it next)")
+    print(f"momentum balance (vertical, N s): rod {b.rod:+.9g} + table {b.table:+.9g} = gravity {b.gravity:+.9g} + "
+          f"table's mount {b.mount:+.9g} + drive {b.drive:+.9g} + in flight {b.in_flight:+.3g}; residual "
+          f"{b.residual:+.3g} N s ({b.residual / on_rod:+.2e} of the rod's impulse)"
+          + (": the impulses the samples of F_N missed (a contact shorter than a step escapes them)"
+             if coupling == "instantaneous" else ": closed, the table took every impulse the rod received"))
 
 
 def start_value(text):
