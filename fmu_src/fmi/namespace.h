@@ -90,7 +90,6 @@
 #define instance_set NAMESPACED(instance_set)
 #define instance_derivatives NAMESPACED(instance_derivatives)
 #define instance_discard NAMESPACED(instance_discard)
-#define instance_set_tolerance NAMESPACED(instance_set_tolerance)
 #define instance_event_update NAMESPACED(instance_event_update)
 #define instance_fail NAMESPACED(instance_fail)
 #define instance_free_solver NAMESPACED(instance_free_solver)
