@@ -134,6 +134,14 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
     return true;
 }
 
+/* CVODE's step count so far into *steps; false, with a message, if it cannot say. */
+static bool count_steps(CoSim *cs, long *steps, char *err, size_t n)
+{
+    if (CVodeGetNumSteps(cs->cvode, steps) == CV_SUCCESS) return true;
+    snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
+    return false;
+}
+
 CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n)
 {
     cs->model = m;
@@ -142,40 +150,30 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *st
         snprintf(err, n, "CVODE is not set up (its last start failed)");
         return COSIM_FAILED;
     }
+    if (*steps_left <= 0) return COSIM_BUDGET;
     sunrealtype reached = *t;
     if (CVodeSetStopTime(cs->cvode, t_end) != CV_SUCCESS) {
         snprintf(err, n, "CVODE refused the stop time %.17g: %s", t_end, cs->error.text);
         return COSIM_FAILED;
     }
-    long before = 0, after = 0;
-    if (*steps_left <= 0) return COSIM_BUDGET;
     if (CVodeSetMaxNumSteps(cs->cvode, *steps_left) != CV_SUCCESS) {
         snprintf(err, n, "CVODE refused its step budget: CVodeSetMaxNumSteps failed (%s)", cs->error.text);
         return COSIM_FAILED;
     }
-    if (CVodeGetNumSteps(cs->cvode, &before) != CV_SUCCESS) {
-        snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
-        return COSIM_FAILED;
-    }
+    long before = 0, after = 0;
+    if (!count_steps(cs, &before, err, n)) return COSIM_FAILED;
     const int flag = CVode(cs->cvode, t_end, cs->y, &reached, CV_NORMAL);
-    if (CVodeGetNumSteps(cs->cvode, &after) != CV_SUCCESS) {
-        snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
-        return COSIM_FAILED;
-    }
+    if (!count_steps(cs, &after, err, n)) return COSIM_FAILED;
     *steps_left -= after - before;
-    if (flag == CV_TOO_MUCH_WORK) { /* CVODE stands at `reached` with a valid state and can go on */
-        model_set_states(m, N_VGetArrayPointer(cs->y));
-        *t = reached;
-        *steps_left = 0;
-        return COSIM_BUDGET;
-    }
-    if (flag < 0) {
+    /* CV_TOO_MUCH_WORK: the budget is spent, and CVODE stands at `reached` with a valid state */
+    const bool spent = flag == CV_TOO_MUCH_WORK;
+    if (flag < 0 && !spent) {
         snprintf(err, n, "CVODE failed at t = %.17g: %s", reached, cs->error.text);
         return COSIM_FAILED;
     }
     model_set_states(m, N_VGetArrayPointer(cs->y));
-    *t = flag == CV_ROOT_RETURN ? reached : t_end;
-    return flag == CV_ROOT_RETURN ? COSIM_EVENT : COSIM_REACHED;
+    *t = spent || flag == CV_ROOT_RETURN ? reached : t_end;
+    return spent ? COSIM_BUDGET : flag == CV_ROOT_RETURN ? COSIM_EVENT : COSIM_REACHED;
 }
 #else
 typedef int cosim_needs_HAVE_CVODE; /* ISO C wants something in a translation unit */

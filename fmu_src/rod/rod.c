@@ -215,12 +215,19 @@ void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX],
  * its sign there is the rounding's (h = -y/eps + kappa d^2 - delta w (1 + beta d)
  * cancels terms of 1e4 and more deep in the floor: a sign that flips with the
  * last bit of y). The states themselves (y, v, w) are exact. */
+#define NOISE_ULPS (8 * DBL_EPSILON)
+
+static double force_noise(const RodParams *p, const double x[ROD_NX])
+{
+    const double yh = x[ROD_Y] / p->epsilon, d = yh < 0 ? -yh : 0.0;
+    return NOISE_ULPS * (fabs(yh) + p->kappa * d * d + fabs(p->delta * (1 + p->beta * d) * x[ROD_W]));
+}
+
 static void indicator_noise(const RodParams *p, RodMode m, const double x[ROD_NX], double noise[ROD_NZ])
 {
-    const double ulps = 8 * DBL_EPSILON;
-    const double yh = x[ROD_Y] / p->epsilon, d = yh < 0 ? -yh : 0.0;
+    const double ulps = NOISE_ULPS;
     noise[ROD_Z_Y] = 0;
-    noise[ROD_Z_FORCE] = ulps * (fabs(yh) + p->kappa * d * d + fabs(p->delta * (1 + p->beta * d) * x[ROD_W]));
+    noise[ROD_Z_FORCE] = force_noise(p, x);
     noise[ROD_Z_SLIP] = noise[ROD_Z_AUX] = 0;
     if (sticking(m)) {
         const double s = sin(x[ROD_THETA]), c = cos(x[ROD_THETA]), phi = x[ROD_PHI];
@@ -262,9 +269,7 @@ static bool in_contact(const RodParams *p, const double x[ROD_NX], double b)
 {
     const double eps = p->epsilon, w = x[ROD_W];
     const RodCompliance h = rod_compliance(p, x[ROD_Y], w);
-    double noise[ROD_NZ];
-    indicator_noise(p, (RodMode){ true, 1 }, x, noise);
-    const double h0 = fabs(h.h) > noise[ROD_Z_FORCE] ? h.h : 0.0;   /* on F_N = 0: decided by h' */
+    const double h0 = fabs(h.h) > force_noise(p, x) ? h.h : 0.0;   /* on F_N = 0: decided by h' */
     return lex_sign(x[ROD_Y], w, b) < 0 && lex_sign(h0, h.h_yh * (w / eps) + h.h_w * b, h.h_yh * (b / eps)) > 0;
 }
 

@@ -64,6 +64,12 @@ static void record_switch(RodRecord *r, RodMode before, double time)
     if (before.contact && !r->mode.contact) r->t_contact_end = time;
 }
 
+/* An event at `time` on the instant of the current run of events (round-off apart). */
+static bool same_instant(const RodRecord *r, double time)
+{
+    return time - r->instant <= 1e-12 * (1 + fabs(time));
+}
+
 bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
                       bool floor_jumped, ModelEvent *e)
 {
@@ -76,7 +82,7 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
      * straight back to a surface the state had been moved off: its error exceeds the move.
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
-    const int again = r->returns + (time - r->instant <= 1e-12 * (1 + fabs(time)) ? r->events_at_instant : 0);
+    const int again = r->returns + (same_instant(r, time) ? r->events_at_instant : 0);
     bool moved;
     const RodEventResult result =
         rod_event_update(p, &r->mode, x, ldexp(1.0, again < ROD_MAX_RETURNS ? again : ROD_MAX_RETURNS), &moved);
@@ -95,7 +101,7 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
     snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
              before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
     /* Zeno guard: events that do not advance time beyond round-off. */
-    if (time - r->instant > 1e-12 * (1 + fabs(time))) {
+    if (!same_instant(r, time)) {
         r->instant = time;
         r->events_at_instant = 0;
     }
