@@ -3,13 +3,25 @@ issue #25): in every master that loads FMI 3.0 (masters.FMI3_MASTERS: ecos) the 
 closes as with FMI 2.0 and the coupled trajectory is the FMI 2.0 one (the same model cores and
 solver under either layer: to round-off); the masters that do not load it refuse it with the reason
 docs/coupling.md gives (should one learn FMI 3.0, its test fails and it joins FMI3_MASTERS)."""
+import zipfile
+
 import numpy as np
 import pytest
 
 from painleve.coupling import masters
-from painleve.coupling.coupled import Setup, impulse_on_rod, momentum_balance, run_coupled
+from painleve.coupling.coupled import Setup, impulse_on_rod, momentum_balance, run_coupled, write_coupled_ssp
+from painleve.coupling.ssp_check import check_ssp
 
 STOP = 0.45                     # painleve couple's default run: the IWC, flights, landings on the shaking table
+
+
+def test_the_fmi3_archive_is_clean_and_types_its_connectors_as_ssp_1_0_does(si_fmu3_path, table3_path, tmp_path):
+    # SSP 1.0 knows ssc:Real and ssc:Integer, not FMI 3.0's Float64 and Int32 (SystemStructureCommon.xsd)
+    ssp = write_coupled_ssp(tmp_path / "coupled.ssp", si_fmu3_path, table3_path, Setup(), stop_time=STOP)
+    assert check_ssp(ssp) == []
+    with zipfile.ZipFile(ssp) as z:
+        ssd = z.read("SystemStructure.ssd").decode()
+    assert "ssc:Real" in ssd and "Float64" not in ssd
 
 
 @pytest.mark.parametrize("h", [1e-3, 1e-4])

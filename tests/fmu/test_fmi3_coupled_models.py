@@ -67,6 +67,7 @@ def test_the_variables_units_and_the_token_are_the_fmi2_fmus(pair):
         w = vars3[v.name]
         assert (w.valueReference, w.causality, w.variability, w.start, w.unit, w.min, w.max) == \
             (v.valueReference, v.causality, v.variability, v.start, v.unit, v.min, v.max), v.name
+    assert {v.unit for v in md3.modelVariables if v.unit} <= {u.name for u in md3.unitDefinitions}
     assert len(md3.eventIndicators) == md2.numberOfEventIndicators == (4 if model == "PainleveRodSI" else 0)
     assert [u.variable.name for u in md3.outputs] == [u.variable.name for u in md2.outputs]
     assert md3.defaultExperiment.stopTime == md2.defaultExperiment.stopTime
