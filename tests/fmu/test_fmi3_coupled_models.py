@@ -187,7 +187,8 @@ def test_directional_derivatives_are_the_fmi2_fmus_and_adjoints_their_transpose(
     m3, vr = model_exchange(fmu3, fmpy.extract(fmu3, tmp_path / "3"), FMU3Model, ME_START[model])
     m2, _ = model_exchange(fmu2, fmpy.extract(fmu2, tmp_path / "2"), FMU2Model, ME_START[model])
     md = read_model_description(fmu3)
-    unknowns = [u.variable.valueReference for u in md.derivatives + md.outputs if u.variable.variability == "continuous"]
+    unknowns = [u.variable.valueReference for u in md.derivatives + md.outputs
+                if u.variable.variability == "continuous"]
     knowns = [vr[n] for n in states + inputs]
     seeds = np.eye(len(knowns))
     J3 = np.array([m3.getDirectionalDerivative(unknowns, knowns, list(seeds[j])) for j in range(len(knowns))]).T

@@ -116,8 +116,8 @@ def run(args):
     if args.csv:
         np.savetxt(args.csv, np.column_stack([r[name] for name in r.dtype.names]), delimiter=",",
                    header=",".join(r.dtype.names), comments="", fmt="%.17g")
-    print(f"Rod on shaker table: {rod} + {table} (FMI {args.fmi_version}.0), master {args.master} (Jacobi, zero-order hold), "
-          f"{args.coupling} coupling, "
+    print(f"Rod on shaker table: {rod} + {table} (FMI {args.fmi_version}.0), master {args.master} "
+          f"(Jacobi, zero-order hold), {args.coupling} coupling, "
           f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
     contact_time = math.sqrt(rod_si.m / rod_si.k)
     start = (f"theta0 = {case.theta0:.4g}, v0 = {case.v0:.4g}, phi0 = {case.phi0:.4g} (on the table, relative to it)"

@@ -100,8 +100,9 @@ def coupled_fmu(path, role, fmi_version="2.0"):
     p = pathlib.Path(path)
     where = f"painleve couple: --{role} {p}"
     if not p.exists():
-        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default}), "
-                         f"`pip install` the repository (it installs one with the package) or give the path of one")
+        installed = ", `pip install` the repository (it installs one with the package)" if fmi_version == "2.0" else ""
+        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default})"
+                         f"{installed} or give the path of one")
     if p.is_dir() or not zipfile.is_zipfile(p):
         raise UsageError(f"{where} is not an FMU (a zip archive such as {default}); give the .fmu file")
     version = _fmi_version(p)
