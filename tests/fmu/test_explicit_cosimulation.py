@@ -92,3 +92,32 @@ def test_a_sustained_contact_goes_to_cvode_and_an_iwc_does_not(loaded, fmu_path)
     assert "contact 1 -> 0" in logged(messages) and HAND_OVER not in logged(messages)
     iwc.terminate()
     iwc.freeInstance()
+
+
+# bench/bounded_calls.py's case 210 (seed 1): an SI rod in a contact damped by c = 4.8e9 N s/m.
+CASE_210 = dict(m=1, l=0.5, J=0.0833333333333333, g=9.81, k=3461058.4049120061, c=4753199200.16998,
+                mu=6.483406140932706, x=1.1493530796278491e-06, v=2, y=-9.9638739918554971e-06, w=0, theta=1, phi=2,
+                y_floor=0.0045908966285420913, w_floor=2.7015003459329656e-05, v_floor=-0.060724187272739087,
+                F_x=-0.00057695975749177128, F_y=0.34885816248280105, tau=0)
+
+
+def test_a_stiff_contact_stays_with_cvode_and_its_force_does_not_chatter(si_fmu_path):
+    # The contact holds (F_N > 0 throughout: the rod sticks, then slips backward), but its force is
+    # the damping times w: the explicit pair's errors, within the tolerance in w, made the force
+    # indicator cross 0 again and again (20,000 spurious lift-offs, fmi2Discard) until the
+    # trajectory stayed with CVODE once handed over. Now: two switches, the contact never ends.
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    md = read_model_description(si_fmu_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=extract(si_fmu_path), modelIdentifier=md.coSimulation.modelIdentifier)
+    fmu.instantiate()
+    fmu.setupExperiment(tolerance=4.0610954205445336e-06, startTime=-13.095944350373685)
+    fmu.setReal([vr[k] for k in CASE_210], list(CASE_210.values()))
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.doStep(-13.095944350373685, 0.00020849322450497177)    # raises on fmi2Discard
+    assert fmu.getBoolean([vr["contact"]]) == [True]
+    assert fmu.getInteger([vr["switches"]])[0] == 2
+    fmu.terminate()
+    fmu.freeInstance()
