@@ -36,7 +36,8 @@ def run(fmu, n, interface="CS"):
     client = Client(cluster)
     with tempfile.TemporaryDirectory() as tmp:
         t = time.monotonic()
-        result = run_sweep(spec, fmu, pathlib.Path(tmp) / "sweep.parquet", interface=interface,
+        result = run_sweep(spec, fmu, pathlib.Path(tmp) / "sweep.parquet",
+                           fmi_type={"CS": "CoSimulation", "ME": "ModelExchange"}[interface],
                            scheduler=cluster.scheduler_address, progress=False, say=lambda text: None)
         seconds = time.monotonic() - t
     workers = sorted(client.run(peak_rss_mib).values())
