@@ -5,7 +5,7 @@ initialization, the step, the reads), with no master's work in the loop.
 
 Per runner and eps: at the FMU's default tolerance (1e-6, its DefaultExperiment)
 and at the loosest rtol of bench.py's ladder that brings every case's w at the
-return within TARGET (absolute; v0 = 1, so also relative to the impact speed) of
+return within 1e-6 (absolute; v0 = 1, so also relative to the impact speed) of
 the tight reference; microseconds per case (median over cases of the median over
 repeats), the fixed cost per run (the same run without its fmi2DoStep: reset,
 set values, initialization, reads) and the largest |w - w_ref|."""
