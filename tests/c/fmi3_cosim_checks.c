@@ -11,6 +11,9 @@ static const Fmi3Api *const f = &api3;
 
 /* ------------------------------------- Co-Simulation: early return, events */
 
+#if !defined(PROFILE_MODE_SWITCHES) || !defined(PROFILE_RUN_SPAN)
+#error "the model's profiles/NAME.h: PROFILE_MODE_SWITCHES (1: an IWC's switches, as the rods) and PROFILE_RUN_SPAN"
+#endif
 #define SPAN PROFILE_RUN_SPAN
 
 /* One fmi3DoStep over the profile's run of the start values (PainleveRod: the
