@@ -2,6 +2,8 @@
 # folder names, and what every binary built for it needs so that all platforms
 # give the same numbers and load on a bare system (docs/platforms.md).
 
+set(PAINLEVE_PLATFORM_DIR ${CMAKE_CURRENT_LIST_DIR})
+
 # PAINLEVE_FMI2_PLATFORM (linux64, win64, darwin64; empty where FMI 2.0 names no
 # folder, as for aarch64: docs/platforms.md) and PAINLEVE_FMI3_PLATFORM
 # (x86_64-linux, x86_64-windows, aarch64-linux, ...): FMI 3.0's <arch>-<system>.
@@ -42,6 +44,15 @@ endfunction()
 # __declspec(dllexport) there, and a DLL with any such export exports nothing else.
 function(painleve_platform_target TARGET)
   target_compile_options(${TARGET} PRIVATE -ffp-contract=off)
+  # glibc: pow (CVODE's) from its oldest symbol version, not GLIBC_2.29 (cmake/glibc_pow.c).
+  if(CMAKE_SYSTEM_NAME STREQUAL "Linux")
+    include(CheckSymbolExists)
+    check_symbol_exists(__GLIBC__ features.h PAINLEVE_GLIBC)
+    if(PAINLEVE_GLIBC)
+      target_sources(${TARGET} PRIVATE ${PAINLEVE_PLATFORM_DIR}/glibc_pow.c)
+      target_link_options(${TARGET} PRIVATE -Wl,--wrap=pow)
+    endif()
+  endif()
   if(WIN32)
     target_link_options(${TARGET} PRIVATE -static-libgcc)
     # mingw-w64's isfinite (math.h) is a __builtin_choose_expr over __fpclassify,
