@@ -38,7 +38,7 @@ build_platform() {
     fi
     log "$name: the FMUs into $work"
     cmake -S . -B "$work" "${cross[@]}" -DPython3_EXECUTABLE="$PY" -DCMAKE_BUILD_TYPE=Release \
-        -DSUNDIALS_ROOT="$prefix" >"$work.log" 2>&1 &&
+        -DSUNDIALS_ROOT="$prefix" -DPAINLEVE_CVODE_SOURCE_DIR="$SUNDIALS_SRC" >"$work.log" 2>&1 &&
         cmake --build "$work" -j 2 >>"$work.log" 2>&1 || { tail -n 40 "$work.log" >&2; return 1; }
 }
 
