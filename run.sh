@@ -106,7 +106,9 @@ APT_PLATFORM_PACKAGES=(gcc-mingw-w64-x86-64=12.2.0-14+25.2 gcc-aarch64-linux-gnu
                        libc6-dev-arm64-cross=2.36-8cross1 wine64=8.0~repack-4 qemu-user)
 platforms() {
     apt_install "${APT_PLATFORM_PACKAGES[@]}"
-    bash cmake/platforms.sh "$PY" "$(sundials_source)"
+    local src
+    src=$(sundials_source)
+    bash cmake/platforms.sh "$PY" "$src"
 }
 
 # More test-only importers (tests/helpers/other_importers.py): libcosim and ecos from PyPI
