@@ -15,7 +15,7 @@ import pytest
 from fmpy import read_model_description, supported_platforms
 
 from helpers import platform_binaries as pb
-from painleve.experiments.case import Case, horizon
+from painleve.experiments.case import horizon
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = ROOT / "build" / "platforms"
