@@ -20,7 +20,7 @@ floor. `phases` reads the durations off the switches, with one definition:
 Phases that did not happen are NaN; the four add up to t_return - t_touch.
 """
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -67,11 +67,17 @@ class Outcome:
     def as_row(self):
         """A flat dict: the case, the outcome, the predictions and the errors."""
         predicted = an.predict(self.case)
-        row = {**asdict(self.case), **{k: v for k, v in asdict(self).items() if k not in ("case", "solver_stats")}}
+        # shallow: asdict's deep copy of the case and the stats is a sweep's row's largest cost (issue #28)
+        row = {**_fields(self.case), **{k: v for k, v in _fields(self).items() if k not in ("case", "solver_stats")}}
         row.update(e=predicted.e, predicted_w=predicted.e * self.case.v0, predicted_phi=predicted.phi,
                    w_error=self.w_error, phi_error=self.phi_error, theta_error=self.theta_error,
                    time_scale=predicted.time_scale)
         return row
+
+
+def _fields(record):
+    """{name: value} of a dataclass's fields, not copied (dataclasses.asdict copies them deeply)."""
+    return {f.name: getattr(record, f.name) for f in fields(record)}
 
 
 def phases(switches, t_return):
@@ -108,20 +114,25 @@ def flight_back_to_floor(state):
     y = 0: (time offset s <= 0, state there). Closed form: the centre of mass
     (x - cos theta, y + sin theta) falls freely, the rod spins uniformly."""
     th, ph, y, w, v = (float(state[k]) for k in ("theta", "phi", "y", "w", "v"))
-    Ydot, Xdot = w + ph * math.cos(th), v + ph * math.sin(th)
+    # Written as increments from `state` (sin(th + ph s) - sin th = 2 cos(th + ph s/2) sin(ph s/2)):
+    # at a return with w = O(eps) the height's O(1) terms would cancel to a rounding error of
+    # 1e-16 / w in the time, O(1e-10) at eps = 1e-6 (issue #28).
 
     def height(s):
-        return y + math.sin(th) + Ydot * s - s * s / 2 - math.sin(th + ph * s)
+        half = ph * s / 2
+        return y + w * s - s * s / 2 + ph * s * math.cos(th) - 2 * math.cos(th + half) * math.sin(half)
 
     def speed(s):    # d height / ds = w(s)
-        return Ydot - s - ph * math.cos(th + ph * s)
+        half = ph * s / 2
+        return w - s + 2 * ph * math.sin(th + half) * math.sin(half)
     s = -y / w
     for _ in range(20):   # Newton from the straight-line guess; the root is simple (w > 0)
         step = height(s) / speed(s)
         s -= step
         if abs(step) <= 1e-14:    # height's round-off (~1e-16) over w: s is then exact
             break
-    return s, dict(w=speed(s), v=Xdot - ph * math.sin(th + ph * s), theta=th + ph * s, phi=ph)
+    half = ph * s / 2
+    return s, dict(w=speed(s), v=v - 2 * ph * math.cos(th + half) * math.sin(half), theta=th + ph * s, phi=ph)
 
 
 def _first(mask, start=0):

@@ -34,14 +34,21 @@ class Hypotheses:
 
     def __init__(self, who, *arrays):
         self.who, self.fails = who, []
-        self.shape = np.broadcast_shapes(*(np.shape(x) for x in arrays if x is not None))
+        shapes = [np.shape(x) for x in arrays if x is not None]
+        self.shape = np.broadcast_shapes(*shapes) if any(shapes) else ()
 
     def bc(self, x):
-        return np.broadcast_to(floats(x), self.shape)
+        # x as it is where it has the shape already (a sweep's scalar case: broadcast_to's
+        # own cost is most of a prediction's, issue #28)
+        x = floats(x)
+        return x if x.shape == self.shape else np.broadcast_to(x, self.shape)
 
     def need(self, ok, hyp, got, note=None):
         """Record `hyp` if any element of ok is False; got(i)/note(i) describe flat element i."""
-        bad = ~np.broadcast_to(np.asarray(ok, dtype=bool), self.shape)
+        ok = np.asarray(ok, dtype=bool)
+        if ok.all():
+            return
+        bad = ~(ok if ok.shape == self.shape else np.broadcast_to(ok, self.shape))
         if bad.any():
             i = int(np.flatnonzero(bad.ravel())[0])
             where = (f" at element {tuple(int(k) for k in np.unravel_index(i, self.shape))}"
@@ -51,8 +58,8 @@ class Hypotheses:
 
     def scalar(self, name, x, ok_fn, hyp):
         if x is not None:
-            xb = self.bc(x).ravel()
-            self.need(ok_fn(self.bc(x)), hyp, lambda i: f"{name} = {fmt(xb[i])}")
+            xb = self.bc(x)
+            self.need(ok_fn(xb), hyp, lambda i: f"{name} = {fmt(xb.ravel()[i])}")
 
     def done(self):
         if self.fails:
