@@ -46,6 +46,7 @@ sys.path.insert(0, str(HERE))
 from bench_runners import (EPSILONS, FMU, NATIVE, NATIVE_CS_FMUS, ROOT, SCIPY, TUNABLE, Runners,  # noqa: E402
                            an, cases_at, reference, run_native, w_error)
 from cs_table import cs_markdown, cs_results  # noqa: E402
+from si_table import si_markdown  # noqa: E402
 import numpy as np                                       # noqa: E402
 
 
@@ -238,7 +239,7 @@ def main(argv=None):
     rtols = {key: rtol for key, (rtol, _) in chosen.items()}
     equal = summarize(TUNABLE, measure(runners, TUNABLE, repeats, epsilons, rtols), ref, epsilons)
     runners.close()
-    cs = cs_markdown(cs_results(ref, epsilons, LADDER))
+    cs = cs_markdown(cs_results(ref, epsilons, LADDER)) + [""] + si_markdown(epsilons)
     peaks = {} if args.quick else peak_memory(names, epsilons)
     sweep = [] if args.quick else sweep_rows(args.sweep_cases)
     command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")

@@ -14,13 +14,17 @@ import tempfile
 import time
 
 WHERE_THE_TIME_GOES = (
-    "Where a sweep case's time goes (issue #28, measured at a load of 6-7): the FMU integrates an IWC cas"
-    "e in 20-40 us (the table above); the harness's Co-Simulation fast loop spends about 350 us more a ca"
-    "se in fmpy's ctypes calls (reset, start values, initialization, then a doStep and the record's reads"
-    " every 4 eps until the rod is back in the air) and the outcome; the rest is dask's batches and the P"
-    'arquet store. The same 10,000 cases at the same load: 36.6 s with CVODE Co-Simulation (commit 7cee6f'
-    "a), 26.6 s with the explicit pair: the FMU's share was already small, and a fourfold faster sweep ne"
-    'eds fewer fmpy calls a case (one doStep to the horizon where no second contact follows).')
+    "Where a sweep case's time goes (issue #28): the FMU integrates an IWC case in 20-40 us (the tables "
+    "above). Before/after the harness's one long first doStep and its cheaper theory (one run of "
+    'bench/sweep_bench.py 10000 each, back to back, load 3): 12.7 s -> 8.7 s. The same 10,000 cases '
+    'serially in one process (no dask): 4.9 s, 0.49 ms a case, of which (cProfile) about half is the '
+    "paper's predictions for the row (analytic.predict: five checks of the hypotheses and e's closed "
+    'form, in numpy on scalars), a fifth the Co-Simulation fast loop (11 fmpy calls a case: reset, setup,'
+    " start values, initialization, mode, one doStep, the record's reads; the FMU's own share of that is "
+    "20-40 us), the rest the row and the batch's DataFrame. On dask the 2 workers and the driver share "
+    "the machine's 2 cores (1 s to start the cluster, then Parquet writes and scheduling): 8.7 s for 4.9 "
+    's of serial work. A fourfold faster sweep than 7.7 s needs the predictions per batch (vectorized '
+    "over the batch's arrays) rather than per case.")
 SPEC = {"theta0": "0.9:1.2", "epsilon": "1e-5:1e-3:log", "delta": "0:2"}
 
 

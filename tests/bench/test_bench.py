@@ -61,3 +61,17 @@ def test_equal_accuracy_takes_the_loosest_tolerance_that_meets_the_target(runner
         looser = bench.LADDER.index(rtol) - 1
         if looser >= 0:
             assert bench.max_error(runners, name, eps, bench.LADDER[looser], ref) > target, name
+
+
+def test_si_rod_one_step_gives_the_scaled_rods_lift_off(si_fmu_path):
+    """The SI table's runs (bench/si_table.py): PainleveRodSI through one fmi2DoStep, in the paper's
+    units, lifts off with the w of scipy's DOP853 on the scaled model (an independent code) to 1e-6."""
+    import si_table
+    from painleve.experiments import reference
+    from painleve.fmu.experiment import Experiment
+    with Experiment(si_fmu_path, fmi_type="CoSimulation") as ex:
+        for case in bench.cases_at(1e-4):
+            w_ref = reference.run_reference(case, method="DOP853", relative_tolerance=1e-12).w
+            _, state, switches = si_table.run_once(ex, case, 1e-6)
+            assert abs(si_table.w_at_return(state) - w_ref) <= 1e-6, case
+            assert switches >= 1
