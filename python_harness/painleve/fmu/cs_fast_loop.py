@@ -44,26 +44,28 @@ def switches_from_record(start, record, sticks):
     return sorted(switches, key=lambda s: s[0])
 
 
-def _outcome(case, start, t, record, state, switches, sticks):
-    """The Outcome of a run seen at t, in the air above the floor after its contact."""
-    s, back = flight_back_to_floor(state) if state["y"] > 0 else (0.0, state)
+def _outcome(case, start, t, record, back, switches, sticks):
+    """The Outcome of a run seen at t, back on the floor at t + s in state back (s, back: run_back)."""
+    s, state = back
     # The return's time from the closed form may fall a rounding error before the lift-off
     # (delta = 0: they are one instant), so no switch is put after it.
     history = [(min(ts, t + s), contact, mode) for ts, contact, mode in switches_from_record(start, record, sticks)]
-    return outcome_from_switches(case, history, t + s, back, events=switches)
+    return outcome_from_switches(case, history, t + s, state, events=switches)
 
 
-def record_tells(start, t, record, state, contact, switches, sticks, slack=0.0):
-    """Whether a run seen at t, in this state, is one whose outcome the record gives: out of contact,
-    above the floor and rising (so the closed form run back finds the last return) after its
-    contact, and every switch the FMU counted in the history the record implies (a second contact,
-    or a switch the record keeps no time of, would make the count exceed it). The return may fall
-    `slack` before the lift-off (delta = 0: one instant, apart by the closed form's rounding)."""
+def run_back(state):
+    """(s, state at the return): the flight run back in closed form from a state above the floor."""
+    return flight_back_to_floor(state) if state["y"] > 0 else (0.0, state)
+
+
+def record_tells(start, record, state, contact, switches, sticks):
+    """Whether a run seen in this state is one whose outcome the record gives: out of contact, above
+    the floor and rising (so the closed form run back finds the last return) after its contact,
+    and every switch the FMU counted in the history the record implies (a second contact, or a
+    switch the record keeps no time of, would make the count exceed it)."""
     if contact or state["y"] < 0 or state["w"] <= 0 or record["t_contact_end"] <= start[0] or sticks > 1:
         return False
-    if switches != len(switches_from_record(start, record, sticks)) - 1:
-        return False
-    return state["y"] == 0 or t + flight_back_to_floor(state)[0] >= record["t_contact_end"] - slack
+    return switches == len(switches_from_record(start, record, sticks)) - 1
 
 
 def first_step(case):
@@ -99,10 +101,14 @@ def run_stepped(experiment, case, first=None):
         switches, sticks = instance.getInteger([vr["switches"], vr["sticks"]])
         contact = bool(instance.getBoolean([vr["contact"]])[0])
     record, state = {k: values[k] for k in RECORD}, {k: values[k] for k in STATE_AT_RETURN}
-    if first is not None and not record_tells(start, t, record, state, contact, switches, sticks,
-                                              slack=ROUNDING_SLACK * case.epsilon):
+    if first is not None and not record_tells(start, record, state, contact, switches, sticks):
         return None
-    return _outcome(case, start, t, record, state, switches, sticks)
+    back = run_back(state)
+    # With `first`, the return must follow the lift-off (delta = 0: be one instant with it, within
+    # the closed form's rounding): a root of the run back before it would be in the contact.
+    if first is not None and t + back[0] < record["t_contact_end"] - ROUNDING_SLACK * case.epsilon:
+        return None
+    return _outcome(case, start, t, record, back, switches, sticks)
 
 
 def run_co_simulation(experiment, case):

@@ -26,6 +26,7 @@ import numpy as np
 from ..experiments.outcome import SimulationError
 from ..fmu.experiment import Experiment
 from ..theory import analytic as an
+from ..theory.predict_many import predict_many
 from .store import ResultStore, as_frame
 
 
@@ -108,7 +109,9 @@ def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
     """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
     with _IN_USE:
         experiment = experiment_for(blob, fmi_type, tmp_dir)
-        return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, spec.cases(ids))])
+        cases = list(spec.cases(ids))
+        predict_many(cases)     # the batch's predictions over arrays, in predict's cache for the rows
+        return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, cases)])
 
 
 @dataclass
