@@ -19,7 +19,7 @@ import sys
 import tempfile
 import threading
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -91,7 +91,8 @@ def predictions(case):
 def case_row(experiment, case, case_id):
     """One result row: the case, what the FMU did (status 'ok'), or why it did not run
     ('outside' the theorems' hypotheses, or 'failed' with the FMU's reason)."""
-    row = {"id": case_id, **asdict(case), **predictions(case), "status": "ok", "message": ""}
+    row = {"id": case_id, **{f.name: getattr(case, f.name) for f in fields(case)}, **predictions(case), "status": "ok",
+           "message": ""}
     try:
         case.check()
     except an.HypothesisError as err:
