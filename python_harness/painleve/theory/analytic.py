@@ -229,6 +229,8 @@ def theorem_of(case):
 def check_case(case):
     """Raises HypothesisError, naming the hypothesis, unless Theorem 1 or 2 covers the Case
     (a fresh exception each time; the verdict is computed once per case, as predict's)."""
+    if case in _INSIDE:
+        return
     failure = hypothesis_failure(case)
     if failure is not None:
         raise HypothesisError(*failure)
@@ -266,12 +268,15 @@ def _e_of(case, rod):
     return float(rigid_limit.e(case.delta, case.theta0, kappa=case.kappa, beta=case.beta, v0=case.v0, **rod))
 
 
-_SEEDED = {}    # predictions computed over a batch's arrays (predict_many), each taken once by predict
+_SEEDED, _INSIDE = {}, set()    # a batch's predictions over arrays (predict_many), its cases inside
 
 
 def seed_predictions(predictions):
-    """{case: Prediction} that predict returns (and caches) for these cases instead of computing them."""
+    """{case: Prediction} of one batch's cases inside the hypotheses: predict returns (and caches) these
+    instead of computing them, check_case passes these cases (the last batch's) without checking each."""
     _SEEDED.update(predictions)
+    _INSIDE.clear()
+    _INSIDE.update(predictions)
 
 
 @functools.lru_cache(maxsize=4096)

@@ -10,25 +10,45 @@ FIELDS = ("theta0", "phi0", "v0", "delta", "epsilon", "w10", "alpha", "mu")
 
 def predict_many(cases):
     """[analytic.predict(case) for case in cases]. The cases of the linear law inside Theorem 1's or
-    Theorem 2's hypotheses (check_case) are computed over arrays, a theorem at a time, and handed to
-    predict; the others, and a group where a formula refuses an element, case by case as before."""
+    Theorem 2's hypotheses (check_case's) are checked and computed over arrays, a theorem at a time,
+    and handed to predict and check_case; a group with a case outside is checked case by case, and
+    the rest (and a group where a formula refuses an element) is left to predict, case by case."""
     groups = {1: [], 2: []}
-    for case in cases:
-        # (iwc_time_scale also needs epsilon < 1, which the Case's check does not ask)
-        if not (case.kappa or case.beta) and case.epsilon < 1 and an.hypothesis_failure(case) is None:
+    for case in cases:   # (iwc_time_scale also needs epsilon < 1, which check_case does not ask)
+        if not (case.kappa or case.beta) and 0 < case.epsilon < 1:
             groups[an.theorem_of(case)].append(case)
+    seeded = {}
     for theorem, group in groups.items():
+        if group and not _all_inside(theorem, group):
+            group = [case for case in group if an.hypothesis_failure(case) is None]
         if group:
             try:
-                an.seed_predictions(_over_arrays(theorem, group))
+                seeded.update(_over_arrays(theorem, group))
             except (ValueError, ArithmeticError):     # as predict's _or_nan: that group case by case
                 pass
+    an.seed_predictions(seeded)
     return [an.predict(case) for case in cases]
+
+
+def _arrays(group):
+    return (np.array([getattr(c, k) for c in group], dtype=float) for k in FIELDS)
+
+
+def _all_inside(theorem, group):
+    """Whether every case of the group (all of one theorem) is inside its hypotheses, as check_case
+    asks them, checked over arrays."""
+    th, ph, v0, delta, _, w10, alpha, mu = _arrays(group)
+    check = an.check_theorem1 if theorem == 1 else an.check_theorem2
+    try:
+        check(th, ph, v0, alpha=alpha, mu=mu, delta=delta)
+    except an.HypothesisError:
+        return False
+    return theorem == 1 or bool(np.all(w10 < 0))
 
 
 def _over_arrays(theorem, group):
     """{case: Prediction} of cases of one theorem, each formula once over their arrays."""
-    th, ph, v0, delta, eps, w10, alpha, mu = (np.array([getattr(c, k) for c in group], dtype=float) for k in FIELDS)
+    th, ph, v0, delta, eps, w10, alpha, mu = _arrays(group)
     rod = dict(alpha=alpha, mu=mu)
     e = np.atleast_1d(an.e(delta, th, **rod))
     phi = np.atleast_1d(an.phi_after_iwc(th, ph, v0, delta, e=e, **rod))
