@@ -15,16 +15,19 @@ import time
 
 WHERE_THE_TIME_GOES = (
     "Where a sweep case's time goes (issue #28): the FMU integrates an IWC case in 20-40 us (the tables "
-    "above). Before/after the harness's one long first doStep and its cheaper theory (one run of "
-    'bench/sweep_bench.py 10000 each, back to back, load 3): 12.7 s -> 8.7 s. The same 10,000 cases '
-    'serially in one process (no dask): 4.9 s, 0.49 ms a case, of which (cProfile) about half is the '
-    "paper's predictions for the row (analytic.predict: five checks of the hypotheses and e's closed "
-    'form, in numpy on scalars), a fifth the Co-Simulation fast loop (11 fmpy calls a case: reset, setup,'
-    " start values, initialization, mode, one doStep, the record's reads; the FMU's own share of that is "
-    "20-40 us), the rest the row and the batch's DataFrame. On dask the 2 workers and the driver share "
-    "the machine's 2 cores (1 s to start the cluster, then Parquet writes and scheduling): 8.7 s for 4.9 "
-    's of serial work. A fourfold faster sweep than 7.7 s needs the predictions per batch (vectorized '
-    "over the batch's arrays) rather than per case.")
+    "above). Before/after this branch's harness (bench/sweep_bench.py 10000 run back to back on the same "
+    'build, load 3): 13.3 s -> 4.7 s (in three such runs at loads 3-3.6: 12.7 -> 8.7 s with the long '
+    'first doStep alone, 13.8 -> 5.1 s with the predictions over arrays, 13.3 -> 4.7 s with the checks '
+    'over arrays too). The cases themselves now cost about 120 us each in one process (serial run_sweep, '
+    'batches of 2,000: 1.3 s for the 10,000, 1.8 s in batches of 200): a third the Co-Simulation fast '
+    'loop (11 fmpy calls: reset, setup, start values, initialization, the start mode, one doStep, the '
+    'reads; its long first step needs 1 doStep a case where the 4-eps loop needed 2.1, the same time '
+    "within the noise), the rest the row, the batch's DataFrame and Parquet. Before, the paper's "
+    'predictions per case (numpy on scalars: 200 us of predictions and 41 us of checks a case) and '
+    "dataclasses.asdict's deep copies were most of it; theory.predict_many computes a batch's over "
+    "arrays. The rest of the 4.7 s is dask's: the local cluster's start (1 s), its 2 worker processes "
+    "importing the harness and extracting the FMU, the batches' transfer, on 2 cores shared with the "
+    'driver: serially the same sweep takes 1.3-1.8 s.')
 SPEC = {"theta0": "0.9:1.2", "epsilon": "1e-5:1e-3:log", "delta": "0:2"}
 
 
