@@ -10,7 +10,8 @@ Runners (each on the same cases, at eps = 1e-2 ... 1e-6):
                         (painleve.fmu.me_fast_loop), one instance, fmi2Reset between cases
   fmpy ME Euler         the fast loop under fmpy's Euler, h = eps/100
   fmpy CS simulate_fmu  fmpy.simulate_fmu(CoSimulation), one call per case
-  fmpy CS fast loop     painleve Experiment(fmi_type="CoSimulation"): fmi2DoStep, 4 eps apart
+  fmpy CS fast loop     painleve Experiment(fmi_type="CoSimulation"): one long fmi2DoStep past the
+                        lift-off, the outcome from the FMU's record (4 eps apart where it cannot tell)
   scipy <method>        painleve.experiments.reference (solve_ivp, the same model in Python)
   native                bench/native: the FMU's .so under CVODE in C, no Python
 
