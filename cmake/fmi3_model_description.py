@@ -21,7 +21,11 @@ INDICATORS = [
     ("indicator_slip", "v while slipping; a + q_+ F_N (forward fold) while sticking"),
     ("indicator_aux", "a + q_- F_N (backward fold) while sticking; w in flight"),
 ]
-INDICATOR_DEPENDENCIES = ["y", "y w", "v y w theta phi", "y w theta phi"]
+# Which states each indicator depends on, per model (the contact core's indicators over its body:
+# the rod's gap y and w are states; the arm's are functions of all four of its states).
+ARM_STATES = "theta1 theta2 omega1 omega2"
+INDICATOR_DEPENDENCIES = {"PainleveRod": ["y", "y w", "v y w theta phi", "y w theta phi"],
+                          "TwoLinkArm": ["theta1 theta2", ARM_STATES, ARM_STATES, ARM_STATES]}
 
 
 def convert(md2):
@@ -34,10 +38,11 @@ def convert(md2):
         "fmiVersion": "3.0", "modelName": md2.get("modelName"), "instantiationToken": md2.get("guid"),
         "description": md2.get("description"), "version": md2.get("version"),
         "generationTool": md2.get("generationTool"), "variableNamingConvention": "structured"})
+    derivatives = me2.get("providesDirectionalDerivative", "false")   # the FMI 2.0 flag: both or neither
     common = {"modelIdentifier": me2.get("modelIdentifier"), "needsExecutionTool": "false",
               "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "true",
-              "canSerializeFMUState": "true", "providesDirectionalDerivatives": "true",
-              "providesAdjointDerivatives": "true", "providesPerElementDependencies": "false"}
+              "canSerializeFMUState": "true", "providesDirectionalDerivatives": derivatives,
+              "providesAdjointDerivatives": derivatives, "providesPerElementDependencies": "false"}
     ET.SubElement(root, "ModelExchange", {**common, "needsCompletedIntegratorStep": "false"})
     if cs2 is not None:
         ET.SubElement(root, "CoSimulation", {
@@ -76,10 +81,11 @@ def convert(md2):
             attrib["derivative"] = vr_of_index[int(typed.get("derivative"))]
         ET.SubElement(out, TYPES[typed.tag], attrib)
     first = 1 + max(int(v.get("valueReference")) for v in variables)
+    si = units2 is not None and any(u.get("name") == "s" for u in units2.findall("Unit"))   # a model in SI units
     ET.SubElement(out, "Float64", {"name": "time", "valueReference": str(first + len(INDICATORS)),
                                    "causality": "independent", "variability": "continuous",
-                                   "description": "the paper's dimensionless time", "quantity": "Time",
-                                   "unit": "dimensionless"})
+                                   "description": "time" if si else "the paper's dimensionless time",
+                                   "quantity": "Time", "unit": "s" if si else "dimensionless"})
     for k, (name, description) in enumerate(INDICATORS):
         ET.SubElement(out, "Float64", {"name": name, "valueReference": str(first + k), "description": description,
                                        "causality": "local", "variability": "continuous"})
@@ -92,7 +98,7 @@ def convert(md2):
             dependencies = " ".join(vr_of_index[int(i)] for i in unknown.get("dependencies").split())
             ET.SubElement(structure, tag3, {"valueReference": vr_of_index[int(unknown.get("index"))],
                                             "dependencies": dependencies})
-    for k, names in enumerate(INDICATOR_DEPENDENCIES):
+    for k, names in enumerate(INDICATOR_DEPENDENCIES[md2.get("modelName")]):
         ET.SubElement(structure, "EventIndicator", {
             "valueReference": str(first + k), "dependencies": " ".join(vr_of_name[n] for n in names.split())})
     return root
