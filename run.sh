@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The project's two entry points on a fresh Debian machine:
 #   bash run.sh main   set up, build PainleveRod.fmu, run the main job
+#   bash run.sh platforms  set up, build the FMUs for Linux, Windows and ARM into build/platforms/
 #   bash run.sh test   set up, build, run every test
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -18,7 +19,9 @@ APT_TEST_PACKAGES=(clang libclang-rt-14-dev valgrind)
 apt_install() {
     local missing=()
     for p in "$@"; do
-        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+        # NAME=VERSION (pinned) is there only in that version.
+        local want="ok installed "; [[ "$p" == *=* ]] && want="ok installed ${p#*=}\$"
+        dpkg-query -W -f='${Status} ${Version}\n' "${p%%=*}" 2>/dev/null | grep -q "$want" || missing+=("$p")
     done
     # A python3 that already has venv and ensurepip (e.g. pyenv's) needs no python3-venv.
     if python3 -c "import venv, ensurepip" 2>/dev/null; then
@@ -56,13 +59,14 @@ importer_setup() {
 # by cargo and built once, static, CVODE alone, into .tools/ (about 10 s).
 SUNDIALS_SYS_VERSION=0.6.2
 SUNDIALS7=$TOOLS/sundials-7.1
-sundials7_setup() {
-    local stamp="$SUNDIALS7/.from-sundials-sys-$SUNDIALS_SYS_VERSION"
-    [ -f "$stamp" ] && return
-    local cargo work src
+# The pinned SUNDIALS sources: sundials-sys's vendor/ folder, fetched by cargo (which
+# checks the crate against crates.io's checksum) and checked here against the hash of
+# the tree (every file's sha256, in byte order of the names) pinned below. Prints the folder.
+SUNDIALS_TREE_SHA256=926b161e5437799201880054b6312b4ae7123a922370753f6193eaaa8be1158a
+sundials_source() {
+    local cargo work src hash
     cargo=$(find_cargo)
     work=$(mktemp -d)
-    log "SUNDIALS 7 from crates.io sundials-sys $SUNDIALS_SYS_VERSION into $SUNDIALS7 (once)"
     mkdir -p "$work/fetch/src"
     printf '[package]\nname = "fetch-sundials"\nversion = "0.0.0"\nedition = "2021"\n[dependencies]\nsundials-sys = "=%s"\n' \
         "$SUNDIALS_SYS_VERSION" >"$work/fetch/Cargo.toml"
@@ -73,7 +77,19 @@ sundials7_setup() {
     src=$("$cargo" metadata --quiet --format-version 1 --filter-platform "$platform" \
         --manifest-path "$work/fetch/Cargo.toml" | python3 -c \
         'import json, os, sys; print(next(os.path.dirname(p["manifest_path"]) for p in json.load(sys.stdin)["packages"] if p["name"] == "sundials-sys"))')/vendor
+    rm -rf "$work"
+    hash=$(cd "$src" && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 sha256sum | sha256sum | cut -d' ' -f1)
+    [ "$hash" = "$SUNDIALS_TREE_SHA256" ] || { log "$src: tree hash $hash, pinned $SUNDIALS_TREE_SHA256"; return 1; }
     grep -q 'PACKAGE_VERSION_MAJOR "7"' "$src/CMakeLists.txt" || { log "$src is not SUNDIALS 7"; return 1; }
+    echo "$src"
+}
+sundials7_setup() {
+    local stamp="$SUNDIALS7/.from-sundials-sys-$SUNDIALS_SYS_VERSION"
+    [ -f "$stamp" ] && return
+    local work src
+    log "SUNDIALS 7 from crates.io sundials-sys $SUNDIALS_SYS_VERSION into $SUNDIALS7 (once)"
+    src=$(sundials_source)
+    work=$(mktemp -d)
     cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$SUNDIALS7" \
         -DBUILD_SHARED_LIBS=OFF -DBUILD_STATIC_LIBS=ON -DCMAKE_POSITION_INDEPENDENT_CODE=ON \
         -DBUILD_CVODE=ON -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDA=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
@@ -82,6 +98,17 @@ sundials7_setup() {
         cmake --install "$work/build" >>"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; return 1; }
     touch "$stamp"
     rm -rf "$work"
+}
+
+# The multi-platform FMUs (docs/platforms.md): cross compilers, wine and qemu from Debian 12
+# (pinned where Debian 12 has the version; the test runs every binary), then cmake/platforms.sh.
+APT_PLATFORM_PACKAGES=(gcc-mingw-w64-x86-64=12.2.0-14+25.2 gcc-aarch64-linux-gnu=4:12.2.0-3
+                       libc6-dev-arm64-cross=2.36-8cross1 wine64=8.0~repack-4 qemu-user)
+platforms() {
+    apt_install "${APT_PLATFORM_PACKAGES[@]}"
+    local src
+    src=$(sundials_source)
+    bash cmake/platforms.sh "$PY" "$src"
 }
 
 # More test-only importers (tests/helpers/other_importers.py): libcosim and ecos from PyPI
@@ -134,6 +161,7 @@ case "${1:-}" in
           printf '\nvalidation reports: %s (FMI 2.0), %s (FMI 3.0)\nfigures: %s (fig_GB.png, fig_eDelta0.png, fig_video.png, fig_eLaw.png; the numbers in figures.json, a summary in figures.md)\ncoupled study (PainleveRodSI on ShakerTable, SSP): %s\n' \
               "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/" "$ROOT/out/couple.png"
           exit $rc ;;
-    test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
-    *) echo "usage: bash run.sh main|test" >&2; exit 2 ;;
+    platforms) setup; platforms ;;
+    test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; platforms; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
+    *) echo "usage: bash run.sh main|platforms|test" >&2; exit 2 ;;
 esac

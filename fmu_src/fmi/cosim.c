@@ -2,6 +2,7 @@
  * Without HAVE_CVODE (SUNDIALS not linked) this file is empty and
  * Co-Simulation steps say so. */
 #include "cosim.h"
+#include "cvode_build.h" /* HAVE_CVODE also where a source FMU carries CVODE */
 
 #ifdef HAVE_CVODE
 

@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "instance.h"
+#include "cvode_build.h" /* HAVE_CVODE also where a source FMU carries CVODE */
 
 #ifdef HAVE_CVODE
 #include "cosim.h"

@@ -1,5 +1,6 @@
 """A source FMU built as a tool builds it (fmpy's build_platform_binary from <SourceFiles>),
 with the SUNDIALS libraries the project's own build found."""
+import pathlib
 import re
 import shutil
 
@@ -29,3 +30,29 @@ def source_build(fmu_path, where, cmake_options=None):
     (where / "build").mkdir()
     build_platform_binary(unzipped, build_dir=where / "build", cmake_options=cmake_options)
     return unzipped
+
+
+# What Debian's libsundials-dev puts in /usr/include (SUNDIALS 6), and the folders of any other.
+SUNDIALS_HEADERS = ("arkode", "cvode", "cvodes", "ida", "idas", "kinsol", "nvector", "sundials", "sunlinsol",
+                    "sunmatrix", "sunmemory", "sunnonlinsol", "sunadaptcontroller")
+
+
+def sysroot_without_sundials(where):
+    """A sysroot that is this machine's less every SUNDIALS header, for gcc --sysroot: a source
+    build in it cannot reach the system's SUNDIALS, and links only what it names (no -lsundials)."""
+    root = where / "sysroot"
+    include = root / "usr" / "include"
+    include.mkdir(parents=True)
+    for entry in pathlib.Path("/usr/include").iterdir():
+        if entry.name not in SUNDIALS_HEADERS and not entry.name.startswith("sundials"):
+            (include / entry.name).symlink_to(entry)
+    for folder in ("lib", "lib64", "usr/lib", "usr/lib64", "usr/local"):
+        if pathlib.Path("/", folder).exists():
+            (root / folder).parent.mkdir(parents=True, exist_ok=True)
+            (root / folder).symlink_to(pathlib.Path("/", folder))
+    return root
+
+
+def without_system_sundials(where):
+    """cmake options of a source build whose compiler sees no SUNDIALS of the system's."""
+    return {"CMAKE_C_FLAGS": f"--sysroot={sysroot_without_sundials(where)}"}

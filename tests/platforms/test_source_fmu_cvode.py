@@ -1,0 +1,54 @@
+"""Issue #26: a source FMU that builds Co-Simulation anywhere. Each multi-platform FMU
+(build/platforms/, `bash run.sh platforms`) carries the CVODE subset of the pinned SUNDIALS in
+sources/ (cmake/PainleveCvodeSources.cmake), listed in FMI 2.0's <SourceFiles> and FMI 3.0's
+buildDescription.xml. Built as an importer builds it (fmpy's build_platform_binary, with no
+options of ours) by a compiler that sees no SUNDIALS of the system's (a sysroot without its
+headers, no SUNDIALS library linked), its Co-Simulation runs the default experiment as the
+shipped binary does."""
+import pathlib
+import shutil
+import subprocess
+
+import fmpy
+import numpy as np
+import pytest
+from fmpy.build import build_platform_binary
+
+from helpers.source_build import without_system_sundials
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+FMUS = sorted(str(p.relative_to(ROOT / "build")) for pattern in ("*.fmu", "fmi3/*.fmu")
+              for p in (ROOT / "build").glob(pattern))
+
+
+def bundled_version():
+    text = subprocess.run(["grep", "-h", "SUNDIALS_VERSION \"", str(ROOT / "build-platforms" / "x86_64-linux" /
+                                                                    "cvode_bundle" / "sundials" / "sundials_config.h")],
+                          capture_output=True, text=True, check=True).stdout
+    return text.split('"')[1]
+
+
+@pytest.mark.parametrize("fmu", FMUS)
+def test_source_build_without_system_sundials_runs_cosimulation_like_the_shipped_binary(fmu, tmp_path, monkeypatch):
+    shipped = ROOT / "build" / "platforms" / fmu
+    assert shipped.is_file(), f"{shipped} is missing (bash run.sh platforms)"
+    unzipped = pathlib.Path(fmpy.extract(str(shipped), tmp_path / "fmu"))
+    md = fmpy.read_model_description(unzipped)
+    sources = md.buildConfigurations[0].sourceFileSets[0].sourceFiles
+    assert "sundials_src/cvode.c" in sources and md.coSimulation is not None
+    shutil.rmtree(unzipped / "binaries")
+    (tmp_path / "build").mkdir()
+    monkeypatch.setenv("CMAKE_BUILD_PARALLEL_LEVEL", "2")
+    build_platform_binary(unzipped, build_dir=tmp_path / "build", cmake_options=without_system_sundials(tmp_path))
+    binary = next((unzipped / "binaries").glob("*/*.so"))
+    # CVODE came from sources/: the bundled SUNDIALS' version is in the binary, no SUNDIALS library is needed.
+    assert bundled_version().encode() in binary.read_bytes()
+    needed = subprocess.run(["objdump", "-p", str(binary)], capture_output=True, text=True, check=True).stdout
+    assert "sundials" not in needed.lower().split("dynamic section")[1].split("version references")[0]
+    a = fmpy.simulate_fmu(str(shipped), fmi_type="CoSimulation")
+    b = fmpy.simulate_fmu(unzipped, fmi_type="CoSimulation")
+    assert len(a) == len(b) > 10
+    for name in a.dtype.names:
+        x, y = a[name].astype(float), b[name].astype(float)
+        scale = max(np.abs(x).max(), 1e-300)
+        assert np.abs(x - y).max() <= 1e-12 * scale, name
