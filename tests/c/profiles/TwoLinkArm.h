@@ -1,4 +1,4 @@
-/* What the FMI 2.0 driver and fuzz target need to know of TwoLinkArm beyond
+/* What the C drivers and fuzz targets need to know of TwoLinkArm beyond
  * its modelDescription.xml (see PainleveRod.h). */
 #ifndef DRIVER_PROFILE_H
 #define DRIVER_PROFILE_H
@@ -31,5 +31,11 @@ static inline double arm_stiffness(double epsilon)
  * it takes beyond it, in seconds: a few swings of the arm (its period about 1 s). */
 #define PROFILE_FUZZ_SPAN 0.2
 #define PROFILE_FUZZ_LONGEST_STEP 0.2
+
+/* Mode-switch events (the FMI 3.0 driver's Co-Simulation checks): the start values' run over
+ * PROFILE_RUN_SPAN is an IWC (the tip in contact slipping, one stick, lift-off at 2 ms; it
+ * lands again at 19 ms, after the span), which the event record's switches and sticks count. */
+#define PROFILE_MODE_SWITCHES 1
+#define PROFILE_RUN_SPAN 0.015 /* s: t + (0.015 - t) is 0.015 at its events' t (0.01 rounds past itself) */
 
 #endif
