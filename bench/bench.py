@@ -43,8 +43,9 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 # bench_runners first: it keeps BLAS to one thread before numpy is imported.
-from bench_runners import (EPSILONS, FMU, NATIVE, ROOT, SCIPY, TUNABLE, Runners,  # noqa: E402
+from bench_runners import (EPSILONS, FMU, NATIVE, NATIVE_CS_FMUS, ROOT, SCIPY, TUNABLE, Runners,  # noqa: E402
                            an, cases_at, reference, run_native, w_error)
+from cs_table import cs_markdown, cs_results  # noqa: E402
 import numpy as np                                       # noqa: E402
 
 
@@ -109,6 +110,8 @@ def peak_memory(names, epsilons):
     """Each runner's peak RSS (MiB) in a fresh child process running every case once."""
     peaks = {}
     for name in names:
+        if name in NATIVE_CS_FMUS:
+            continue
         if name == "native":
             rows = run_native(NATIVE, FMU, [c for eps in epsilons for c in cases_at(eps)])
             peaks[name] = f"{rows[0]['peak_rss_kib'] / 1024:.1f}"
@@ -152,7 +155,7 @@ def fmt(x, spec):
     return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
 
 
-def markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, seconds):
+def markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, seconds, cs_lines=()):
     out = [f"# Benchmarks: cost per IWC case", "",
            f"Command: `{command}` ({seconds:.0f} s). Machine: {platform.node()}, {platform.machine()}, "
            f"{os.cpu_count()} cores, {platform.platform()}, Python {platform.python_version()}, "
@@ -206,6 +209,8 @@ def markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, comma
         sci = min((f"scipy {m}" for m in SCIPY), key=lambda n: ms[n] if not math.isnan(ms[n]) else math.inf)
         me, cs, nat = ms["fmpy ME fast loop"], ms["fmpy CS fast loop"], ms["native"]
         out.append(f"| {eps:.0e} | {sci} {ms[sci]:.3f} | {me / ms[sci]:.2f} | {ms[sci] / cs:.1f} | {cs / nat:.2f} |")
+    if cs_lines:
+        out += [""] + list(cs_lines)
     if sweep:
         out += ["", "## Sweep on dask", ""] + sweep
     return "\n".join(out) + "\n"
@@ -233,10 +238,12 @@ def main(argv=None):
     rtols = {key: rtol for key, (rtol, _) in chosen.items()}
     equal = summarize(TUNABLE, measure(runners, TUNABLE, repeats, epsilons, rtols), ref, epsilons)
     runners.close()
+    cs = cs_markdown(cs_results(ref, epsilons, LADDER))
     peaks = {} if args.quick else peak_memory(names, epsilons)
     sweep = [] if args.quick else sweep_rows(args.sweep_cases)
     command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")
-    text = markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, time.monotonic() - start)
+    text = markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, command, time.monotonic() - start,
+                    cs)
     print(text)
     if not args.quick:
         pathlib.Path(args.out).parent.mkdir(parents=True, exist_ok=True)

@@ -15,7 +15,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
 import fmpy                                              # noqa: E402
-from native_driver import run_native                     # noqa: E402
+from native_driver import run_native, run_native_cs      # noqa: E402
 from painleve.experiments import reference                      # noqa: E402
 from painleve.experiments.case import Case                      # noqa: E402
 from painleve.experiments.outcome import outcome_of_trajectory  # noqa: E402
@@ -24,6 +24,11 @@ from painleve.theory import analytic as an                      # noqa: E402
 
 FMU = ROOT / "build" / "PainleveRod.fmu"
 NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"
+NATIVE_CS = ROOT / "build" / "bench" / "native" / "painleve_native_cs"
+# Co-Simulation under CVODE alone, as before the explicit pair (issue #28): a build of the commit
+# before it (e.g. main's build/PainleveRod.fmu at 7cee6fa), if given; the runner is left out if not.
+CVODE_CS_FMU = os.environ.get("PAINLEVE_BENCH_CVODE_CS_FMU")
+NATIVE_CS_FMUS = {"native CS": FMU, **({"native CS (CVODE only)": CVODE_CS_FMU} if CVODE_CS_FMU else {})}
 EPSILONS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
 SCIPY = ("LSODA", "DOP853", "Radau", "BDF")
 VIDEO = dict(theta0=0.9463, phi0=1.6654, v0=1.0, delta=1.0)
@@ -54,7 +59,7 @@ class Counting:
 
 
 # The runners with a tolerance: those compared at equal accuracy.
-TUNABLE = ["fmpy ME fast loop", "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"]
+TUNABLE = ["fmpy ME fast loop", "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"] + list(NATIVE_CS_FMUS)
 
 
 class Runners:
@@ -68,7 +73,7 @@ class Runners:
 
     def names(self):
         return (["fmpy ME simulate_fmu", "fmpy ME fast loop", "fmpy ME Euler", "fmpy CS simulate_fmu",
-                 "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"])
+                 "fmpy CS fast loop"] + [f"scipy {m}" for m in SCIPY] + ["native"] + list(NATIVE_CS_FMUS))
 
     def run(self, name, case, rtol=None):
         self.me.relative_tolerance = self.cs.relative_tolerance = rtol    # simulate_fmu's settings too
@@ -93,6 +98,9 @@ class Runners:
         if name == "native":
             return [(n["wall_seconds"], dict(w=n["w"], nfev=n["nfev"], nsteps=n["nsteps"], nevents=n["nevents"]))
                     for n in run_native(NATIVE, FMU, cases, rtol=rtol)]
+        if name in NATIVE_CS_FMUS:
+            return [(n["wall_seconds"], dict(w=n["w"], nevents=n["switches"], fixed_seconds=n["fixed_seconds"]))
+                    for n in run_native_cs(NATIVE_CS, NATIVE_CS_FMUS[name], cases, rtol=rtol, repeat=5)]
         return [timed(self.run, name, case, rtol) for case in cases]
 
     def simulate_fmu(self, case, fmi_type):

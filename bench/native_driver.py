@@ -19,7 +19,7 @@ import subprocess
 import tempfile
 
 FIELDS = ("theta0", "phi0", "v0", "delta", "epsilon", "w10", "alpha", "mu")
-INTEGERS = {"nsteps", "nfev", "njev", "ngev", "nevents"}
+INTEGERS = {"nsteps", "nfev", "njev", "ngev", "nevents", "switches", "contact"}
 
 
 def case_line(case):
@@ -53,6 +53,22 @@ def _parse(stdout, cases):
     return rows
 
 
+def run_native_cs(executable, fmu_path, cases, *, rtol=None, repeat=1, timeout=None):
+    """Runs `cases` through bench/native's painleve_native_cs (the FMU's own Co-Simulation,
+    one fmi2DoStep over each case, from C); one dict per case as run_native's, its w, v,
+    theta, phi at the return to the floor run back in closed form from the state at the
+    horizon (as the harness's Co-Simulation fast loop does), wall_seconds and
+    fixed_seconds (the run without its step: reset, set values, initialization, reads)."""
+    from painleve.experiments.outcome import flight_back_to_floor
+    rows = run_native(executable, fmu_path, cases, rtol=rtol, repeat=repeat, jacobian=None, timeout=timeout)
+    for row in rows:
+        if row["contact"] or not row["y"] > 0:
+            raise RuntimeError(f"{row['case']}: not in flight at the horizon (contact {row['contact']}, y {row['y']})")
+        _, back = flight_back_to_floor(row)
+        row.update((k, back[k]) for k in ("w", "v", "theta", "phi"))
+    return rows
+
+
 def run_native(executable, fmu_path, cases, *, rtol=None, repeat=1, jacobian="dq", timeout=None):
     """Runs `cases` (painleve.experiments.case.Case) through `executable` on the FMU at
     `fmu_path` (a .fmu, extracted here to a temporary directory, an extracted FMU
@@ -62,7 +78,7 @@ def run_native(executable, fmu_path, cases, *, rtol=None, repeat=1, jacobian="dq
     executable = pathlib.Path(executable)
     if not executable.is_file() or not os.access(executable, os.X_OK):
         raise FileNotFoundError(f"{executable} is missing: `cmake --build build` builds it (needs SUNDIALS CVODE)")
-    if jacobian not in ("dq", "analytic"):
+    if jacobian not in ("dq", "analytic", None):
         raise ValueError(f"jacobian must be 'dq' or 'analytic', not {jacobian!r}")
     cases = list(cases)
     tmp = None
@@ -72,7 +88,7 @@ def run_native(executable, fmu_path, cases, *, rtol=None, repeat=1, jacobian="dq
             from fmpy import extract
             tmp = tempfile.mkdtemp(prefix="painleve-native-")
             target = extract(target, tmp)
-        cmd = [str(executable), target, "--repeat", str(int(repeat)), "--jacobian", jacobian]
+        cmd = [str(executable), target, "--repeat", str(int(repeat))] + (["--jacobian", jacobian] if jacobian else [])
         if rtol is not None:
             cmd += ["--rtol", repr(float(rtol))]
         stdin = "".join(case_line(c) + "\n" for c in cases)

@@ -1,7 +1,8 @@
-/* Co-Simulation's own integrator: SUNDIALS CVODE (Adams, Newton with a dense
- * linear solver and the rod's analytic Jacobian, root finding on the rod's
- * event indicators)
- * over the model of model.h. Knows CVODE and the model, not FMI. */
+/* Co-Simulation's implicit integrator: SUNDIALS CVODE (Adams, Newton with a
+ * dense linear solver and the rod's analytic Jacobian, root finding on the
+ * rod's event indicators) over the model of model.h, for what the explicit
+ * pair (explicit_rk.h) hands over: a sustained contact. Knows CVODE and the
+ * model, not FMI. */
 #ifndef COSIM_H
 #define COSIM_H
 

@@ -32,6 +32,7 @@ void instance_reset(Instance *in)
     in->time = 0;
     in->tolerance = MODEL_DEFAULT_TOLERANCE;
     in->solver_live = false;
+    in->solver_implicit = false;
     in->last_successful_time = 0;
 }
 

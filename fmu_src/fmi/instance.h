@@ -48,6 +48,7 @@ struct Instance {
     double tolerance;            /* the master's, else the DefaultExperiment's */
     void *solver;                /* Co-Simulation's integrator, made on the first step */
     bool solver_live;            /* the solver holds this trajectory at `time`: a step continues it */
+    bool solver_implicit;        /* CVODE, not the explicit pair, integrates (a sustained stiff phase) */
     double last_successful_time;
     bool inputs_jumped;          /* an input changed since the last Co-Simulation step */
 };

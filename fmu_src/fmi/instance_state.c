@@ -2,9 +2,10 @@
  * byte layout. The FMI layers allocate, hand over and free the snapshots.
  *
  * A snapshot holds the instance's own fields and a copy of the model (plain
- * data, no pointers). Co-Simulation restarts CVODE wherever a state is taken
- * or restored, so the snapshot holds everything either interface needs to
- * continue identically.
+ * data, no pointers). Co-Simulation restarts its integrator (the one the
+ * trajectory has: the explicit pair, or CVODE after a hand-over) wherever a
+ * state is taken or restored, so the snapshot holds everything either
+ * interface needs to continue identically.
  *
  * Serialized form (little endian), self-describing and versioned:
  *   "PRODSTAT" | u32 version | u32 guid length | guid | u32 field count |
@@ -25,11 +26,12 @@
     if (!(cond)) return instance_fail(in, call, __VA_ARGS__)
 
 #define MAGIC "PRODSTAT"
-#define FORMAT_VERSION 2u
+#define FORMAT_VERSION 3u   /* 3: solver_implicit (issue #28) */
 
 typedef struct {
     double time, tolerance, last_successful_time;
     int interface, state;
+    bool solver_implicit; /* Co-Simulation's trajectory is CVODE's: a restored run goes on with it */
     Model model;
 } Snapshot;
 
@@ -39,6 +41,7 @@ static const ModelField INSTANCE_FIELDS[] = {
     { "last_successful_time", offsetof(Snapshot, last_successful_time), TYPE_REAL },
     { "interface", offsetof(Snapshot, interface), TYPE_INTEGER },
     { "instance_state", offsetof(Snapshot, state), TYPE_INTEGER },
+    { "solver_implicit", offsetof(Snapshot, solver_implicit), TYPE_BOOLEAN },
 };
 #define N_INSTANCE_FIELDS (sizeof INSTANCE_FIELDS / sizeof INSTANCE_FIELDS[0])
 #define N_FIELDS (N_INSTANCE_FIELDS + model_n_fields)
@@ -63,8 +66,9 @@ void instance_snapshot_take(Instance *in, void *snapshot)
 {
     *(Snapshot *)snapshot = (Snapshot){ .time = in->time, .tolerance = in->tolerance,
                                         .last_successful_time = in->last_successful_time,
-                                        .interface = (int)in->interface, .state = (int)in->state, .model = in->model };
-    /* Co-Simulation restarts CVODE here, as a run restored from this state will:
+                                        .interface = (int)in->interface, .state = (int)in->state,
+                                        .solver_implicit = in->solver_implicit, .model = in->model };
+    /* Co-Simulation restarts its integrator here, as a run restored from this state will:
      * both continue from the same solver state, bit for bit. */
     in->solver_live = false;
 }
@@ -79,7 +83,8 @@ Status instance_snapshot_restore(Instance *in, const char *call, const void *sna
     in->last_successful_time = s->last_successful_time;
     in->state = (InstanceState)s->state;
     model_restore(&in->model, &s->model);
-    in->solver_live = false;    /* Co-Simulation restarts CVODE from the restored state */
+    in->solver_live = false;    /* Co-Simulation restarts its integrator from the restored state */
+    in->solver_implicit = s->solver_implicit;
     return STATUS_OK;
 }
 

@@ -1,32 +1,62 @@
-/* A Co-Simulation step under any FMI version (instance.h): the embedded CVODE
- * of cosim.c integrates the model, and each event it locates gets the same
- * event update as in Model Exchange.
+/* A Co-Simulation step under any FMI version (instance.h): the explicit
+ * Dormand-Prince pair of explicit_rk.c integrates the model, or, where a
+ * sustained contact makes it stiff, the embedded CVODE of cosim.c; each event
+ * either locates gets the same event update as in Model Exchange.
  *
- * CVODE continues from one step to the next (its history is the trajectory's:
- * a communication point costs no restart) and restarts after events and
- * wherever the trajectory may have been replaced: initialization, reset, FMU
- * state get and set. So the FMU state is still just the model's. */
+ * The integrator continues from one step to the next (a communication point
+ * costs no restart) and restarts after events and wherever the trajectory may
+ * have been replaced: initialization, reset, FMU state get and set. So the FMU
+ * state is still the model's, and which integrator the trajectory has. A
+ * trajectory handed to CVODE stays with it, across events and restarts, until the
+ * instance is reset: in a stiff contact the explicit pair's errors, within the
+ * tolerance in the states, reach the contact force times the damping (an SI rod
+ * with c = 4.8e9 N s/m: its force indicator chattered through 20,000 spurious
+ * lift-offs), where CVODE stays on the slow motion; and a rod on the shaker
+ * table, whose inputs restart the integrator at every step, is not tested for
+ * stiffness again each time. An IWC never hands over: the explicit pair runs it. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "instance.h"
 #include "cvode_build.h" /* HAVE_CVODE also where a source FMU carries CVODE */
 
 #ifdef HAVE_CVODE
 #include "cosim.h"
+#include "explicit_rk.h"
+
+typedef struct {
+    Erk erk;
+    CoSim *cvode; /* made when a trajectory is first handed over */
+} Integrator;
 
 void instance_free_solver(Instance *in)
 {
-    cosim_free(in->solver);
+    Integrator *s = in->solver;
+    if (s) cosim_free(s->cvode);
+    free(s);
     in->solver = NULL;
+}
+
+/* CVODE from the model's state at the instance's time; false with a message. */
+static bool start_cvode(Instance *in, char *err, size_t n)
+{
+    Integrator *s = in->solver;
+    if (!s->cvode) s->cvode = cosim_new();
+    if (!s->cvode) {
+        snprintf(err, n, "out of memory for the integrator");
+        return false;
+    }
+    return cosim_start(s->cvode, &in->model, in->time, in->tolerance, err, n);
 }
 
 static Status restart(Instance *in, const char *call)
 {
+    Integrator *s = in->solver;
     char err[512];
-    if (!cosim_start(in->solver, &in->model, in->time, in->tolerance, err, sizeof err))
-        return instance_fail(in, call, "%s", err);
+    if (!in->solver_implicit) erk_start(&s->erk, &in->model, in->time, in->tolerance);
+    else if (!start_cvode(in, err, sizeof err)) return instance_fail(in, call, "%s", err);
     model_begin_integration(&in->model);
     in->solver_live = true;
     return STATUS_OK;
@@ -63,9 +93,28 @@ static Status out_of_budget(Instance *in, const char *call, long budget, const c
                             "smaller steps", budget, what, in->time, t_end, states);
 }
 
+/* One advance of the trajectory's integrator; the explicit pair hands a
+ * trajectory it cannot take on to CVODE at the time it reached (logged). */
+static CoSimResult advance(Instance *in, double t_end, long *steps_left, char *err, size_t n)
+{
+    Integrator *s = in->solver;
+    if (!in->solver_implicit) {
+        switch (erk_advance(&s->erk, &in->model, &in->time, t_end, steps_left)) {
+        case ERK_REACHED: return COSIM_REACHED;
+        case ERK_EVENT: return COSIM_EVENT;
+        case ERK_BUDGET: return COSIM_BUDGET;
+        case ERK_HAND_OVER: break;
+        }
+        instance_log_event(in, "t = %.17g: %s: CVODE integrates on", in->time, s->erk.why);
+        in->solver_implicit = true;
+        if (!start_cvode(in, err, n)) return COSIM_FAILED;
+    }
+    return cosim_advance(s->cvode, &in->model, &in->time, t_end, steps_left, err, n);
+}
+
 static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
 {
-    if (!in->solver) in->solver = cosim_new();
+    if (!in->solver) in->solver = calloc(1, sizeof(Integrator));
     if (!in->solver) return instance_fail(in, call, "out of memory for the integrator");
     if (in->inputs_jumped) {   /* the master's new inputs: the mode may change (a stick may end) */
         bool changed;
@@ -80,7 +129,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
     /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
     while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
         char err[512];
-        const CoSimResult r = cosim_advance(in->solver, &in->model, &in->time, t_end, &steps_left, err, sizeof err);
+        const CoSimResult r = advance(in, t_end, &steps_left, err, sizeof err);
         if (r == COSIM_FAILED) {
             in->solver_live = false;
             return instance_fail(in, call, "%s", err);

@@ -129,6 +129,10 @@
 #define instance_step NAMESPACED(instance_step)
 #define instance_state_name NAMESPACED(instance_state_name)
 
+/* explicit_rk.c: Co-Simulation's explicit pair */
+#define erk_advance NAMESPACED(erk_advance)
+#define erk_start NAMESPACED(erk_start)
+
 /* cosim.c: Co-Simulation's integrator */
 #define cosim_advance NAMESPACED(cosim_advance)
 #define cosim_free NAMESPACED(cosim_free)

@@ -34,9 +34,12 @@ def test_the_closed_form_solves_the_equation():
 @pytest.mark.parametrize("fmi_type", INTERFACES)
 def test_forced_damped_oscillator_follows_the_closed_form_and_converges_with_the_tolerance(table_path, fmi_type):
     errors = []
+    # Co-Simulation's explicit pair (issue #28) at communication steps of 1e-3 takes the master's
+    # step, whose error (2.6e-9) is below both tolerances: at 1e-2 its own step control decides.
+    interval = 1e-2 if fmi_type == "CoSimulation" else 1e-3
     for tolerance in (1e-6, 1e-8):
         r = simulate_fmu(table_path, fmi_type=fmi_type, start_values=START, output=["position", "velocity"],
-                         output_interval=1e-3, relative_tolerance=tolerance)
+                         output_interval=interval, relative_tolerance=tolerance)
         assert r["time"][-1] == pytest.approx(2.5)     # the DefaultExperiment: 5 time constants 2 M / C
         z, v = closed_form(r["time"], z0=START["position"], v0=START["velocity"], **DEFAULTS)
         # The transient is still visible at the start (amplitude 1.5x the steady one) and gone at the end.
