@@ -20,9 +20,9 @@ build_platform() {
     local cross=()
     [ -n "$toolchain" ] && cross=(-DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchains/$toolchain.cmake")
     local stamp="$prefix/.from-$(basename "$(dirname "$SUNDIALS_SRC")")"
+    mkdir -p "$ROOT/build-platforms"
     if [ ! -f "$stamp" ]; then
-        mkdir -p "$ROOT/build-platforms"
-    log "$name: static CVODE from $SUNDIALS_SRC into $prefix"
+        log "$name: static CVODE from $SUNDIALS_SRC into $prefix"
         rm -rf "$work-sundials" "$prefix"
         cmake -S "$SUNDIALS_SRC" -B "$work-sundials" "${cross[@]}" -DCMAKE_BUILD_TYPE=Release \
             -DCMAKE_C_FLAGS=-ffp-contract=off -DCMAKE_INSTALL_PREFIX="$prefix" \
