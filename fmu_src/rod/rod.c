@@ -51,6 +51,18 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
     return r;
 }
 
+void rod_coefficient_outputs(const RodParams *p, const double x[ROD_NX], double out[ROD_NOUT])
+{
+    const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
+    out[ROD_OUT_A] = k.a;
+    out[ROD_OUT_B] = k.b;
+    out[ROD_OUT_P_PLUS] = k.p_plus;
+    out[ROD_OUT_P_MINUS] = k.p_minus;
+    out[ROD_OUT_Q_PLUS] = k.q_plus;
+    out[ROD_OUT_Q_MINUS] = k.q_minus;
+    out[ROD_OUT_S_W] = k.S_w;
+}
+
 RodCompliance rod_compliance(const RodParams *p, double y, double w)
 {
     /* Written so that kappa = beta = 0 evaluates -y/eps - delta w in the same

@@ -16,8 +16,12 @@ enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
 /* Event indicators. Slots 2 and 3 change meaning with the mode (see rod.c). */
 enum { ROD_Z_Y, ROD_Z_FORCE, ROD_Z_SLIP, ROD_Z_AUX, ROD_NZ };
 
-/* Algebraic outputs. */
-enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY, ROD_NOUT };
+/* Algebraic outputs: the forces, the energy, and the coefficients of eq Painleve and
+ * eq Sw at the current state (RodCoeffs's a, b, p_+-, q_+-, S_w), which tell a user where
+ * the paradox region p_plus < 0 lies. */
+enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY,
+       ROD_OUT_A, ROD_OUT_B, ROD_OUT_P_PLUS, ROD_OUT_P_MINUS, ROD_OUT_Q_PLUS, ROD_OUT_Q_MINUS, ROD_OUT_S_W,
+       ROD_NOUT };
 
 typedef struct {
     double alpha;   /* m l^2 / I, > 0 */
@@ -48,6 +52,10 @@ typedef struct {
 } RodCoeffs;
 
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
+
+/* out[ROD_OUT_A .. ROD_OUT_S_W] from rod_coeffs at the state x (any mode: they are the
+ * body's, not the mode's). */
+void rod_coefficient_outputs(const RodParams *p, const double x[ROD_NX], double out[ROD_NOUT]);
 
 /* The compliance law h(yh, w) of eq hNon in the scaled variables yh = y/eps and w,
  * with the scaled penetration d = max(-yh, 0):

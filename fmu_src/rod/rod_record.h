@@ -49,6 +49,18 @@ typedef struct {
     VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
     VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)
 
+/* The coefficients of eq Painleve and eq Sw at the current state, in the paper's scaled
+ * form (rod.h's ROD_OUT_A ..), for a model whose outputs array `OUT` holds them at `FIRST`
+ * (the index of a). */
+#define ROD_COEFFICIENT_VARIABLES(VARIABLE, OUT, FIRST)                                            \
+    VARIABLE(A, "a", REAL, CALCULATED, OUT[(FIRST)], 0, 0)                                         \
+    VARIABLE(B, "b", REAL, CALCULATED, OUT[(FIRST) + 1], 0, 0)                                     \
+    VARIABLE(P_PLUS, "p_plus", REAL, CALCULATED, OUT[(FIRST) + 2], 0, 0)                           \
+    VARIABLE(P_MINUS, "p_minus", REAL, CALCULATED, OUT[(FIRST) + 3], 0, 0)                         \
+    VARIABLE(Q_PLUS, "q_plus", REAL, CALCULATED, OUT[(FIRST) + 4], 0, 0)                           \
+    VARIABLE(Q_MINUS, "q_minus", REAL, CALCULATED, OUT[(FIRST) + 5], 0, 0)                         \
+    VARIABLE(S_W, "S_w", REAL, CALCULATED, OUT[(FIRST) + 6], 0, 0)
+
 /* The record's variables and internals for a model's config.h lists (the
  * Model's RodRecord field is `run`): the times of the last switches (Reals),
  * the mode and counts (Integers, Boolean), what an FMU state carries beyond. */
