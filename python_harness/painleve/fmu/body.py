@@ -76,11 +76,13 @@ class Body:
     def defaults(self, names):
         return {n: float(self.variables[n].start) for n in names if self.variables[n].start is not None}
 
-    def _initialize(self, instance, values, tolerance=None):
-        vr = self.experiment.vr
-        unknown = [k for k in values if k not in vr]
+    def _known(self, values):
+        unknown = [k for k in values if k not in self.experiment.vr]
         if unknown:
             raise BodyError(f"{self.name} has no variable {unknown[0]!r}")
+
+    def _initialize(self, instance, values, tolerance=None):
+        vr = self.experiment.vr
         instance.setupExperiment(tolerance=tolerance, startTime=0.0)
         instance.setReal([vr[k] for k in values], [float(x) for x in values.values()])
         instance.enterInitializationMode()
@@ -88,6 +90,8 @@ class Body:
 
     def outputs(self, values, names):
         """{name: value} after initialization from the start values `values`."""
+        self._known(values)
+        self._known(dict.fromkeys(names))
         with self.experiment.fresh_run(f"{self.name} at {values}") as instance:
             self._initialize(instance, values)
             return self.experiment.read(list(names))
