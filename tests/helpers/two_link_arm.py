@@ -84,7 +84,8 @@ def coefficients(arm, th, om):
         out[f"q_{name}"] = G[0, 1] - s * arm.mu * G[0, 0]
         out[f"p_{name}"] = G[1, 1] - s * arm.mu * G[1, 0]
         out[f"c_{name}"] = arm.M * minv @ (J[1] - s * arm.mu * J[0]) * arm.L
-    out["S_w"] = np.linalg.det(G) / G[0, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):   # G_TT = 0 where the tip cannot slip (W_T = 0)
+        out["S_w"] = np.linalg.det(G) / G[0, 0]
     return out
 
 

@@ -29,7 +29,8 @@ def body_options(parser, *, case=False):
     g.add_argument("--guess", action="append", default=[], metavar="NAME=VALUE",
                    help="where to start solving for a state that is not given (picks a branch, e.g. theta2=-1)")
     if case:   # validate has no case options of its own
-        g.add_argument("--v0", type=number, default=1.0, help="slip speed of the contact point (default 1)")
+        g.add_argument("--v0", type=number, default=None, help="slip speed of the contact point (default: that of "
+                       "the FMU's own start)")
         g.add_argument("--delta", type=number, default=1.0, help="contact damping, scaled (default 1)")
 
 
@@ -52,13 +53,20 @@ def _fmt(x):
 
 def run_iwc(args, fmu):
     from ..fmu.body import Body
-    from ..fmu.body_case import run
+    from ..fmu.body_case import predict
     case = _case(args, args.epsilon)
     with Body(fmu) as body:
-        predicted, outcome = run(body, case)
+        predicted = predict(body, case)
+        if predicted.hypotheses:
+            raise UsageError(f"painleve iwc: {predicted.hypotheses} at the start "
+                             + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
+                             + "; choose a configuration inside the paradox region (painleve figures --fmu "
+                               "shows it) or another --v0")
+        outcome = body.iwc(predicted.start)
         name = body.name
     co = predicted.coefficients
-    error = outcome.w / case.v0 - predicted.e
+    v0 = predicted.start_v0
+    error = outcome.w / v0 - predicted.e
     if args.json:
         print(to_json({"fmu": fmu, "model": name, "start": predicted.start,
                        "coefficients": {k: float(getattr(co, k)) for k in ("a", "b", "p_plus", "p_minus", "q_plus",
@@ -79,7 +87,7 @@ def run_iwc(args, fmu):
     print(f"{'quantity':<22}{'simulated':<16}{'analytic (eps -> 0)':<22}difference")
     print(f"{'outcome':<22}{'IWC' if outcome.stuck else 'lift-off':<16}{'IWC' if not predicted.hypotheses else '-':<22}")
     diff = f"{error:+.3e} ({error / predicted.e:+.3%} of e)" if not math.isnan(predicted.e) else ""
-    print(f"{'w/v0 at return':<22}{_fmt(outcome.w / case.v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
+    print(f"{'w/v0 at return':<22}{_fmt(outcome.w / v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
     print(f"{'v at return':<22}{_fmt(outcome.v):<16}{'0 + O(eps)':<22}")
     print(f"{'t_return':<22}{_fmt(outcome.t_return):<16}{'O(eps ln 1/eps)':<22}events: {outcome.events}")
     return 0

@@ -36,6 +36,8 @@ def run(args):
         fmu = fmu_file(args.fmu, allow_body=True)
         if body.is_body(fmu, args):
             return body.run_iwc(args, fmu)
+    if args.v0 is None:
+        args.v0 = DEFAULTS["v0"]
     case = Case(**{k: getattr(args, k) for k in DEFAULTS})
     try:
         case.check()

@@ -43,6 +43,7 @@ def paradox_figure(fmu, out_dir, *, given=None, axes=None, ranges=None, n=81, dp
         ranges = ranges or [(-np.pi, np.pi)] * len(axes)
         grids, pp, yy = paradox_grid(body, given, axes, ranges, n)
         name = body.name
+        marked = {**body.defaults(axes), **{a: given[a] for a in axes if a in given}}
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     fig, ax = plt.subplots(figsize=(6.5, 5.5))
@@ -54,6 +55,8 @@ def paradox_figure(fmu, out_dir, *, given=None, axes=None, ranges=None, n=81, dp
         ax.set_ylabel(axes[1])
         ax.plot([], [], color="tab:red", label="p_plus < 0 (Painleve paradox, forward slip)")
         ax.plot([], [], "k--", label="y = 0 (contact point on the floor)")
+        if len(marked) == 2:
+            ax.plot(marked[axes[0]], marked[axes[1]], "k*", ms=10, label="start values (the FMU's or --set)")
         del region
     else:
         ax.plot(grids[0], pp, color="k", label="p_plus")
@@ -68,5 +71,5 @@ def paradox_figure(fmu, out_dir, *, given=None, axes=None, ranges=None, n=81, dp
     plt.close(fig)
     data.write_text(json.dumps({"fmu": str(fmu), "model": name, "axes": axes, "given": given,
                                 "grids": [g.tolist() for g in grids], "p_plus": pp.tolist(), "y": yy.tolist(),
-                                "paradox_fraction": float(np.mean(pp < 0))}))
+                                "paradox_fraction": float(np.mean(pp < 0)), "marked": marked}))
     return [str(png), str(data)]

@@ -129,8 +129,21 @@ class Body:
         target = np.array([0.0, v0, w0])
 
         def residual(u):
-            out = self.outputs(dict(values, **dict(zip(unknown, u))), CONTACT)
+            out = self.outputs(dict(values, **dict(zip(unknown, (float(x) for x in u)))), CONTACT)
             return np.array([out[n] for n in CONTACT]) - target
+        try:
+            u, r = self._gauss_newton(residual, u, v0, max_iterations)
+        except SimulationError as err:    # a trial state outside the FMU's ranges: no start near the guess
+            raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values}: "
+                            f"the search left the FMU's ranges ({str(err).split('the FMU stopped: ')[-1]}); "
+                            f"give other states or --guess") from None
+        if np.any(np.abs(r) > 1e-12 * (1 + abs(v0) + abs(w0))):
+            raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values} "
+                            f"(residual y, v - v0, w - w0 = {r}); give other states or --guess")
+        return dict(values, **dict(zip(unknown, (float(x) for x in u))))
+
+    @staticmethod
+    def _gauss_newton(residual, u, v0, max_iterations):
         r = residual(u)
         for _ in range(max_iterations):
             h = 1e-7 * (1 + np.abs(u))
@@ -140,10 +153,7 @@ class Body:
             r = residual(u)
             if np.all(np.abs(step) <= 1e-15 * (1 + np.abs(u))) or np.all(np.abs(r) <= 1e-15 * (1 + abs(v0))):
                 break
-        if np.any(np.abs(r) > 1e-12 * (1 + abs(v0) + abs(w0))):
-            raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values} "
-                            f"(residual y, v - v0, w - w0 = {r}); give other states or --guess")
-        return dict(values, **dict(zip(unknown, (float(x) for x in u))))
+        return u, r
 
     def iwc(self, values, *, relative_tolerance=None, horizon=None, doublings=30):
         """The run from `values` until the contact point, having been in contact, is back at y = 0 with

@@ -11,9 +11,10 @@ from .body import Body, BodyOutcome
 @dataclass(frozen=True)
 class BodyCase:
     """A start on the floor: the start values the user gives (parameters, some states), the contact
-    point's slip speed v0 and normal speed w0 (the FMU's units), the compliance eps, delta."""
+    point's slip speed v0 (None: that of the FMU's own start) and normal speed w0 (the FMU's units),
+    the compliance eps, delta."""
     given: tuple          # ((name, value), ...)
-    v0: float = 1.0
+    v0: float = None
     epsilon: float = 1e-3
     delta: float = 1.0
     w0: float = 0.0
@@ -23,6 +24,7 @@ class BodyCase:
 @dataclass(frozen=True)
 class BodyPrediction:
     start: dict           # every start value the run uses (the solved states included)
+    start_v0: float       # the slip speed it starts with
     coefficients: object  # theory.general.Coefficients at the start
     epsilon: float
     delta: float
@@ -35,12 +37,13 @@ class BodyPrediction:
 
 def predict(body: Body, case: BodyCase) -> BodyPrediction:
     values = body.compliance(dict(case.given), case.epsilon, case.delta)
-    start = body.floor_start(values, case.v0, case.w0, guess=dict(case.guess))
+    v0 = body.outputs(values, ("v",))["v"] if case.v0 is None else case.v0
+    start = body.floor_start(values, v0, case.w0, guess=dict(case.guess))
     co, eps, delta = body.coefficients(start)
     theorem = int(general.theorem_of(co))
     failed = ""
     try:
-        general.check(co, theorem, delta=delta, v0=case.v0)
+        general.check(co, theorem, delta=delta, v0=v0)
     except HypothesisError as err:
         failed = str(err)
     if theorem == 2 and not failed and not case.w0 < 0:
@@ -52,7 +55,7 @@ def predict(body: Body, case: BodyCase) -> BodyPrediction:
             w1s = float(general.w1_star(delta, co))
     except HypothesisError:
         pass
-    return BodyPrediction(start=start, coefficients=co, epsilon=eps, delta=delta, quadrant=str(general.quadrant(co)),
+    return BodyPrediction(start=start, start_v0=v0, coefficients=co, epsilon=eps, delta=delta, quadrant=str(general.quadrant(co)),
                           theorem=theorem, e=e, w1_star=w1s, hypotheses=failed)
 
 

@@ -30,13 +30,14 @@ def validate_body(fmu, case, epsilons=EPSILONS):
         errors = []
         for eps in epsilons:
             predicted, outcome = run(body, replace(case, epsilon=eps))
-            err = outcome.w / case.v0 - predicted.e
+            v0 = predicted.start_v0
+            err = outcome.w / v0 - predicted.e
             errors.append(abs(err))
             checks.append(Check(f"body/ME/eps{eps:g}/iwc", "w/v0 at the return to y = 0 against e (eq eGeneral)",
-                                f"w/v0 = {outcome.w / case.v0:.6g}, e = {predicted.e:.6g}, error {err:+.3e} "
+                                f"w/v0 = {outcome.w / v0:.6g}, e = {predicted.e:.6g}, error {err:+.3e} "
                                 f"({err / predicted.e:+.2%}), stuck: {outcome.stuck}",
                                 "the IWC happens (the contact point sticks)", outcome.stuck,
-                                numbers=dict(epsilon=eps, w_over_v0=outcome.w / case.v0, e=predicted.e)))
+                                numbers=dict(epsilon=eps, w_over_v0=outcome.w / v0, e=predicted.e)))
         falls = all(b <= a for a, b in zip(errors, errors[1:])) or errors[-1] < errors[0] / 10
         checks.append(Check("body/ME/all/convergence", "the error falls with eps and is small at the smallest",
                             " -> ".join(f"{x:.2e}" for x in errors) + f" (e = {first.e:.6g})",
