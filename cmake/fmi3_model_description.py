@@ -1,6 +1,6 @@
-"""The FMI 3.0 model description of PainleveRod, made from the FMI 2.0 one (the
-variables', units', experiment's and dependencies' one home) at build time,
-and the FMI 3.0 source FMU's buildDescription.xml.
+"""The FMI 3.0 model description of a model (PainleveRod, PainleveRodSI, ShakerTable),
+made from its FMI 2.0 one (the variables', units', experiment's and dependencies' one
+home) at build time, and the FMI 3.0 source FMU's buildDescription.xml.
 
     python3 fmi3_model_description.py FMI2_XML OUT_DIR SOURCE...
 
@@ -14,14 +14,31 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 TYPES = {"Real": "Float64", "Integer": "Int32", "Boolean": "Boolean"}
-# The event indicators of fmu_src/rod/rod.c, in order, as FMI 3.0 variables.
+# The event indicators of fmu_src/rod/rod.c, in order, as FMI 3.0 variables: (name,
+# description, the knowns it depends on).
 INDICATORS = [
-    ("indicator_y", "y: the contact surface"),
-    ("indicator_g", "g = -y/eps - delta w: the compliant force's zero"),
-    ("indicator_slip", "v while slipping; a + q_+ F_N (forward fold) while sticking"),
-    ("indicator_aux", "a + q_- F_N (backward fold) while sticking; w in flight"),
+    ("indicator_y", "y: the contact surface", "y"),
+    ("indicator_g", "g = -y/eps - delta w: the compliant force's zero", "y w"),
+    ("indicator_slip", "v while slipping; a + q_+ F_N (forward fold) while sticking", "v y w theta phi"),
+    ("indicator_aux", "a + q_- F_N (backward fold) while sticking; w in flight", "y w theta phi"),
 ]
-INDICATOR_DEPENDENCIES = ["y", "y w", "v y w theta phi", "y w theta phi"]
+# PainleveRodSI's are rod.c's on the scaled state in the floor's frame (fmu_src/models/PainleveRodSI/rod_si.c):
+# the floor's inputs enter with the states they offset, the applied loads with the sticking folds' a.
+SI_INDICATORS = [
+    ("indicator_y", "(y - the floor's height)/l: the contact surface", "y y_floor"),
+    ("indicator_g", "the compliant force's zero in the paper's units: -gap/(eps l) - delta (w - w_floor)/sqrt(g l)",
+     "y w y_floor w_floor"),
+    ("indicator_slip", "(v - v_floor)/sqrt(g l) while slipping; a + q_+ F_N/(m g) (forward fold) while sticking",
+     "v y w theta phi y_floor w_floor v_floor F_x F_y tau"),
+    ("indicator_aux", "a + q_- F_N/(m g) (backward fold) while sticking; (w - w_floor)/sqrt(g l) in flight",
+     "y w theta phi y_floor w_floor F_x F_y tau"),
+]
+# Each model's event indicators and independent variable (its unit is one of the model's units).
+MODELS = {
+    "PainleveRod": (INDICATORS, "the paper's dimensionless time", "dimensionless"),
+    "PainleveRodSI": (SI_INDICATORS, "time", "s"),
+    "ShakerTable": ([], "time", "s"),
+}
 
 
 def convert(md2):
@@ -29,6 +46,8 @@ def convert(md2):
     vr_of_index = {i + 1: v.get("valueReference") for i, v in enumerate(variables)}
     vr_of_name = {v.get("name"): v.get("valueReference") for v in variables}
     me2, cs2 = md2.find("ModelExchange"), md2.find("CoSimulation")
+    indicators, time_description, time_unit = MODELS[md2.get("modelName")]
+    assert len(indicators) == int(md2.get("numberOfEventIndicators", "0")), "one FMI 3.0 variable per indicator"
 
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "3.0", "modelName": md2.get("modelName"), "instantiationToken": md2.get("guid"),
@@ -54,11 +73,12 @@ def convert(md2):
             base = unit.find("BaseUnit")
             if base is not None:
                 ET.SubElement(u, "BaseUnit", dict(base.attrib))
-    types = ET.SubElement(root, "TypeDefinitions")
-    for simple in md2.find("TypeDefinitions"):
-        real = simple.find("Real")
-        ET.SubElement(types, "Float64Type", {"name": simple.get("name"), "description": simple.get("description"),
-                                             **{k: real.get(k) for k in ("quantity", "unit") if real.get(k)}})
+    if md2.find("TypeDefinitions") is not None:
+        types = ET.SubElement(root, "TypeDefinitions")
+        for simple in md2.find("TypeDefinitions"):
+            real = simple.find("Real")
+            ET.SubElement(types, "Float64Type", {"name": simple.get("name"), "description": simple.get("description"),
+                                                 **{k: real.get(k) for k in ("quantity", "unit") if real.get(k)}})
     categories = ET.SubElement(root, "LogCategories")
     for category in md2.find("LogCategories"):
         ET.SubElement(categories, "Category", dict(category.attrib))
@@ -76,11 +96,10 @@ def convert(md2):
             attrib["derivative"] = vr_of_index[int(typed.get("derivative"))]
         ET.SubElement(out, TYPES[typed.tag], attrib)
     first = 1 + max(int(v.get("valueReference")) for v in variables)
-    ET.SubElement(out, "Float64", {"name": "time", "valueReference": str(first + len(INDICATORS)),
+    ET.SubElement(out, "Float64", {"name": "time", "valueReference": str(first + len(indicators)),
                                    "causality": "independent", "variability": "continuous",
-                                   "description": "the paper's dimensionless time", "quantity": "Time",
-                                   "unit": "dimensionless"})
-    for k, (name, description) in enumerate(INDICATORS):
+                                   "description": time_description, "quantity": "Time", "unit": time_unit})
+    for k, (name, description, _) in enumerate(indicators):
         ET.SubElement(out, "Float64", {"name": name, "valueReference": str(first + k), "description": description,
                                        "causality": "local", "variability": "continuous"})
 
@@ -92,7 +111,7 @@ def convert(md2):
             dependencies = " ".join(vr_of_index[int(i)] for i in unknown.get("dependencies").split())
             ET.SubElement(structure, tag3, {"valueReference": vr_of_index[int(unknown.get("index"))],
                                             "dependencies": dependencies})
-    for k, names in enumerate(INDICATOR_DEPENDENCIES):
+    for k, (_, _, names) in enumerate(indicators):
         ET.SubElement(structure, "EventIndicator", {
             "valueReference": str(first + k), "dependencies": " ".join(vr_of_name[n] for n in names.split())})
     return root

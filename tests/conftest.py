@@ -66,6 +66,18 @@ def table_path():
 
 
 @pytest.fixture(scope="session")
+def si_fmu3_path():
+    """The rod in SI units as an FMI 3.0 FMU."""
+    return built_fmu("fmi3", "PainleveRodSI.fmu")
+
+
+@pytest.fixture(scope="session")
+def table3_path():
+    """The shaker table as an FMI 3.0 FMU."""
+    return built_fmu("fmi3", "ShakerTable.fmu")
+
+
+@pytest.fixture(scope="session")
 def loaded(fmu_path):
     """The built FMU loaded once by the harness (extracted; raw instances from .instantiate)."""
     from painleve.fmu.experiment import Experiment

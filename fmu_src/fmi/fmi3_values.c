@@ -19,7 +19,7 @@ static fmi3Status get_values(fmi3Instance instance, const char *call, const fmi3
 {
     BEGIN(call, READABLE);
     if (check_arrays(in, call, vr, nvr, values, nValues) != fmi3OK) return fmi3Error;
-    double z[MODEL_NZ];
+    double z[MODEL_NZ + 1]; /* + 1: a model without indicators (ShakerTable) has no zero-size array */
     for (size_t i = 0; i < nvr; ++i) {
         double v;
         if (type == TYPE_REAL && vr[i] >= VR_COUNT && vr[i] < VR_COUNT + MODEL_NZ) {

@@ -1,8 +1,9 @@
-/* The two places where SUNDIALS 6 and 7 differ for a CVODE user like us,
+/* The three places where SUNDIALS 6 and 7 differ for a CVODE user like us,
  * switched on SUNDIALS' own version macro here and nowhere else: the
- * communicator a context takes, and how errors are reported (6: a handler
+ * communicator a context takes, how errors are reported (6: a handler
  * per CVODE memory; 7: a stack of handlers on the context, whose default
- * prints on stderr). Everything else is written against SUNDIALS 7's names
+ * prints on stderr), and warnings (6: the same handler; 7: the context's
+ * logger, whose default prints on stdout). Everything else is written against SUNDIALS 7's names
  * (sunrealtype, SUNComm, SUN_COMM_NULL), which 6.4 has or gets here. */
 #ifndef SUNDIALS_COMPAT_H
 #define SUNDIALS_COMPAT_H
@@ -39,6 +40,38 @@ static inline int sundials_catch_errors(SUNContext ctx, void *cvode, SundialsErr
                ? 0
                : -1;
 }
+
+/* The context's logger writes nowhere: a warning ("t + h = t on the next step")
+ * on the importer's stdout is noise in its output, and what matters of it comes
+ * with the failure, through the handler above. (A new logger's outputs are
+ * stdout and stderr, and a file name is the only way to change them.) 0 on
+ * success; the logger is the caller's, freed by sundials_context_free. */
+static inline int sundials_quiet_logger(SUNContext ctx)
+{
+#ifdef _WIN32
+    const char *nowhere = "NUL";
+#else
+    const char *nowhere = "/dev/null";
+#endif
+    SUNLogger logger = NULL;
+    if (SUNLogger_Create(SUN_COMM_NULL, 0, &logger) != SUN_SUCCESS) return -1;
+    if (SUNLogger_SetErrorFilename(logger, nowhere) != SUN_SUCCESS ||
+        SUNLogger_SetWarningFilename(logger, nowhere) != SUN_SUCCESS ||
+        SUNContext_SetLogger(ctx, logger) != SUN_SUCCESS) {
+        SUNLogger_Destroy(&logger);
+        return -1;
+    }
+    return 0;
+}
+
+/* Frees the context, then the logger it holds but does not own. */
+static inline void sundials_context_free(SUNContext *ctx)
+{
+    SUNLogger logger = NULL;
+    SUNContext_GetLogger(*ctx, &logger);
+    SUNContext_Free(ctx);
+    if (logger) SUNLogger_Destroy(&logger);
+}
 #else
 typedef void *SUNComm; /* 6: the context's communicator is a void * */
 #define SUN_COMM_NULL NULL
@@ -54,6 +87,18 @@ static inline int sundials_catch_errors(SUNContext ctx, void *cvode, SundialsErr
 {
     (void)ctx;
     return CVodeSetErrHandlerFn(cvode, sundials_error_handler, error) == CV_SUCCESS ? 0 : -1;
+}
+
+/* 6 hands warnings to the handler above too (which keeps errors only). */
+static inline int sundials_quiet_logger(SUNContext ctx)
+{
+    (void)ctx;
+    return 0;
+}
+
+static inline void sundials_context_free(SUNContext *ctx)
+{
+    SUNContext_Free(ctx);
 }
 #endif
 

@@ -36,7 +36,7 @@ def one_line_error(r, status):
 def test_help_explains_every_option():
     r = painleve("--help")
     assert r.returncode == 0
-    for option in ("--rod", "--table", "--master", "--coupling", "--stop", "--step", "--set", "--out", "--ssp", "--csv",
+    for option in ("--rod", "--table", "--master", "--fmi-version", "--coupling", "--stop", "--step", "--set", "--out", "--ssp", "--csv",
                    "--dpi", "fmpy", "libcosim", "ecos", "mean", "instantaneous"):
         assert option in r.stdout, option
 
@@ -72,6 +72,23 @@ def test_couple_writes_the_figure_the_table_and_the_archive(master, tmp_path):
     assert list(scratch.iterdir()) == []                      # nothing left behind
 
 
+def test_couple_runs_the_fmi3_fmus_in_ecos_as_the_fmi2_ones(tmp_path):
+    """--fmi-version 3 takes build/fmi3/*.fmu: the same table as the FMI 2.0 FMUs' to round-off, the
+    balance closed, and nothing of ecos's loading chatter on stdout."""
+    tables = {}
+    for version in ("2", "3"):
+        r = painleve("--fmi-version", version, "--master", "ecos", "--stop", 0.02, "--step", 1e-4,
+                     "--out", tmp_path / f"{version}.png", "--csv", tmp_path / f"{version}.csv", "--dpi", 40)
+        assert r.returncode == 0, r.stderr
+        assert f"(FMI {version}.0), master ecos" in r.stdout and "fmi3GetVersion" not in r.stdout + r.stderr
+        balance = next(x for x in r.stdout.splitlines() if x.startswith("momentum balance"))
+        assert abs(float(balance.split("of the rod's impulse")[0].split("(")[-1])) <= 1e-6, balance
+        tables[version] = np.genfromtxt(tmp_path / f"{version}.csv", delimiter=",", names=True, deletechars="")
+    assert "build/fmi3/PainleveRodSI.fmu + build/fmi3/ShakerTable.fmu" in r.stdout
+    for name in tables["2"].dtype.names:
+        np.testing.assert_allclose(tables["3"][name], tables["2"][name], rtol=1e-12, atol=1e-12, err_msg=name)
+
+
 def test_couple_shows_what_the_instantaneous_coupling_loses(tmp_path):
     """h = 1e-3 against a contact of 0.2 ms: the IWC at t = 0 is over before the first sample of
     F_N, so the table held none of its impulse, and the balance misses all of it."""
@@ -98,6 +115,9 @@ def test_couple_shows_what_the_instantaneous_coupling_loses(tmp_path):
     (["--stop", 0.1, "--step", 3e-4], "--stop 0.1 is not a whole number of --step 0.0003"),
     (["--step", 0], "argument --step: 0 is not > 0"),
     (["--master", "omsimulator"], "argument --master: invalid choice"),
+    (["--fmi-version", 3, "--master", "ecos"], "PainleveRodSI.fmu is an FMI 2.0 FMU; --fmi-version 3 couples FMI 3.0"),
+    (["--fmi-version", 3], "--fmi-version 3 --master fmpy: fmpy 0.3.32's simulate_ssp instantiates every FMU"),
+    (["--fmi-version", 3, "--master", "libcosim"], "imports FMI 1.0 and 2.0 only"),
 ])
 def test_bad_input_ends_in_one_line(args, expected, tmp_path):
     base = {"--rod": ROD, "--table": TABLE}

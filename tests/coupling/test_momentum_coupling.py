@@ -46,13 +46,15 @@ def step_averages(fine, name, per_step):
 
 
 # ------------------------------------------------------------------ the FMUs' step means
-def test_the_rods_step_means_are_its_contact_forces_averaged_over_each_step(si_fmu_path):
+@pytest.mark.parametrize("which", ["si_fmu_path", "si_fmu3_path"])        # FMI 2.0 and 3.0
+def test_the_rods_step_means_are_its_contact_forces_averaged_over_each_step(which, request):
     """The default IWC on a fixed floor: the contact lasts about 0.5 ms, inside the first step of
     1 ms, and the rod is in flight in the second. Each step's mean times h equals the trapezoid
     integral of F_N, F_T sampled every 1e-7 s (the same trajectory: the inputs never change, so
     CVODE runs on through the communication points). F_N is continuous: the two agree to the
     solver's error (1e-6 of the impulse). F_T jumps where a stick begins and ends (mu F_N to the
     sticking force), where a trapezoid errs by up to dt/2 times the jump: dt max|F_T| bounds it."""
+    si_fmu_path = request.getfixturevalue(which)
     H, dt = 1e-3, 1e-7
     coarse = cs_run(si_fmu_path, H, 2 * H, ["F_N_mean", "F_T_mean", "F_N"])
     fine = cs_run(si_fmu_path, dt, 2 * H, ["F_N", "F_T"])
@@ -71,9 +73,11 @@ def test_the_rods_step_means_are_its_contact_forces_averaged_over_each_step(si_f
     assert coarse["F_N_mean"][0] == 0         # before the first step: nothing delivered
 
 
-def test_the_tables_step_means_are_its_mount_and_drive_impulses_over_each_step(table_path):
+@pytest.mark.parametrize("which", ["table_path", "table3_path"])
+def test_the_tables_step_means_are_its_mount_and_drive_impulses_over_each_step(which, request):
     """The table shaken at 5 Hz: mount_force_mean h = -K int z - C (z(t1) - z(t0)) (trapezoid on 100
     samples a step), drive_force_mean h = F0 (cos w t0 - cos w t1)/w exactly."""
+    table_path = request.getfixturevalue(which)
     H, per_step, stop = 1e-3, 100, 0.2
     K, C, F0, f = 4e4, 40.0, 50.0, 5.0
     coarse = cs_run(table_path, H, stop, ["mount_force_mean", "drive_force_mean"])
@@ -91,7 +95,9 @@ def test_the_tables_step_means_are_its_mount_and_drive_impulses_over_each_step(t
     np.testing.assert_allclose(coarse["drive_force_mean"][1:], drive, rtol=0, atol=1e-9 * F0)
 
 
-def test_in_model_exchange_a_step_mean_is_the_force_itself(si_fmu_path, table_path):
+@pytest.mark.parametrize("rod, table", [("si_fmu_path", "table_path"), ("si_fmu3_path", "table3_path")])
+def test_in_model_exchange_a_step_mean_is_the_force_itself(rod, table, request):
+    si_fmu_path, table_path = request.getfixturevalue(rod), request.getfixturevalue(table)
     rod = fmpy.simulate_fmu(si_fmu_path, fmi_type="ModelExchange", stop_time=0.002, output_interval=1e-5,
                             output=["F_N", "F_T", "F_N_mean", "F_T_mean"])
     assert np.max(rod["F_N"]) > 100

@@ -188,7 +188,8 @@ def test_instantiate_simulate_free_cycles_keep_memory_flat(build, model):
 # holds the budget-exhausting regressions, fuzz_bounded*, whole runs, 85-190).
 FUZZ_RUNS = {"fuzz_fmi": 10000, "fuzz_fmi3": 10000, "fuzz_bounded": 3000, "fuzz_bounded3": 3000,
              **{f"fuzz_fmi{MODELS[name]}": 8000 for name in MODEL_DIRS},
-             **{f"fuzz_bounded{MODELS[name]}": 2000 for name in MODEL_DIRS}}
+             **{f"fuzz_bounded{MODELS[name]}": 2000 for name in MODEL_DIRS},
+             **{f"fuzz_bounded3{MODELS[name]}": 2000 for name in MODEL_DIRS}}
 
 
 def fuzz_runs(target):

@@ -5,6 +5,7 @@ with the step equal to the output interval (stop/500 unless given), events found
 by the indicators' signs at step ends; its Co-Simulation calls fmi2DoStep once per
 output interval, so the FMU's own CVODE does the integrating.
 """
+import pathlib
 import subprocess
 
 import numpy as np
@@ -31,14 +32,16 @@ def run_fmi_sim(fmu_path, tmp_path, interface, *, start_values=None, stop_time=N
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({done.returncode}): {done.stderr[:2000]}")
     rows = np.genfromtxt(out, delimiter=",", names=True, dtype=None, encoding=None)
-    contact = np.array([str(c).strip().lower() == "true" for c in rows["contact"]])
     result = np.zeros(rows.shape, dtype=[(n, float) for n in rows.dtype.names])
     for name in rows.dtype.names:
-        result[name] = contact if name == "contact" else rows[name]
+        if rows[name].dtype.kind in "USO":      # a Boolean column: true, false
+            result[name] = [str(c).strip().lower() == "true" for c in rows[name]]
+        else:
+            result[name] = rows[name]
     return result
 
 
-def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path):
+def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path, nominals=2):
     """A copy of the FMI 3.0 FMU that fmi-sim 0.7.0 (fmi-schema 0.8.0) parses.
 
     Its Float64 variable element has no `nominal`, `unit` or `quantity` attribute
@@ -48,17 +51,18 @@ def fmi3_fmu_fmi_sim_can_read(fmu3_path, tmp_path):
     modelDescription.xml: the binary is untouched, units are for people, and the
     nominals only serve an importer's error control, which fmi-sim does not have
     (fixed-step Euler; in Co-Simulation the FMU's CVODE takes its nominals from
-    the model, not from the XML)."""
+    the model, not from the XML). `nominals`: how many the model declares (PainleveRod
+    y and w, ShakerTable position and velocity, PainleveRodSI none)."""
     import re
     import zipfile
 
-    out = tmp_path / "PainleveRod3_for_fmi_sim.fmu"
+    out = tmp_path / (pathlib.Path(fmu3_path).stem + "3_for_fmi_sim.fmu")
     with zipfile.ZipFile(fmu3_path) as src, zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as dst:
         for item in src.infolist():
             data = src.read(item)
             if item.filename == "modelDescription.xml":
                 text, n = re.subn(r' nominal="[^"]*"', "", data.decode())
-                assert n == 2, f"expected the nominals of y and w, found {n}"
+                assert n == nominals, f"expected {nominals} nominals, found {n}"
                 text = re.sub(r' unit="[^"]*"', "", text)
                 text = re.sub(r'(<Float64 [^>]*?) quantity="[^"]*"', r"\1", text)
                 data = text.encode()

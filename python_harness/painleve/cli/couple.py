@@ -29,13 +29,16 @@ def add_parser(sub):
                                     "balance (closed to rounding with the step means).")
     cp.add_argument("--rod", metavar="PATH",
                     help=f"the rod's FMU (default {DEFAULT_ROD_FMU} if there is one, else the one installed with "
-                         f"the package)")
+                         f"the package; with --fmi-version 3 build/fmi3/PainleveRodSI.fmu)")
     cp.add_argument("--table", metavar="PATH",
                     help=f"the table's FMU (default {DEFAULT_TABLE_FMU} if there is one, else the one installed "
-                         f"with the package)")
+                         f"with the package; with --fmi-version 3 build/fmi3/ShakerTable.fmu)")
     cp.add_argument("--master", choices=MASTERS, default="fmpy",
                     help="fmpy (fmpy.ssp), libcosim (libcosimpy) or ecos (ecospy); the last two are installed by "
                          "`bash run.sh test` (default %(default)s)")
+    cp.add_argument("--fmi-version", choices=("2", "3"), default="2",
+                    help="couple the FMI 2.0 FMUs (build/*.fmu) or the FMI 3.0 ones (build/fmi3/*.fmu), which "
+                         "ecos runs and fmpy's SSP master and libcosim do not (default %(default)s)")
     cp.add_argument("--coupling", choices=tuple(COUPLINGS), default="mean",
                     help="what the table's loads are connected to: the rod's contact forces averaged over the last "
                          "communication step (mean: the impulse the rod received / h) or their values at the "
@@ -61,11 +64,14 @@ def run(args):
     import numpy as np
 
     from ..coupling.coupled import RECORD, ROD_INPUTS, TABLE_INPUTS, Setup, write_coupled_ssp
-    from ..coupling.masters import MasterUnavailable, run, steps_of
+    from ..coupling.masters import FMI3_MASTERS, NO_FMI3, MasterUnavailable, run, steps_of
     from ..coupling.ssp_check import check_ssp
     from ..figures.coupled import coupled_figure
-    rod, rod_vars = coupled_fmu(args.rod, "rod")
-    table, table_vars = coupled_fmu(args.table, "table")
+    if args.fmi_version == "3" and args.master not in FMI3_MASTERS:
+        raise UsageError(f"painleve couple: --fmi-version 3 --master {args.master}: {NO_FMI3[args.master]}; "
+                         f"--master {' or '.join(FMI3_MASTERS)} runs FMI 3.0 FMUs")
+    rod, rod_vars = coupled_fmu(args.rod, "rod", f"{args.fmi_version}.0")
+    table, table_vars = coupled_fmu(args.table, "table", f"{args.fmi_version}.0")
     setup = Setup()
     for comp, name, value in args.start_values:
         variables, connected = (rod_vars, ROD_INPUTS) if comp == "rod" else (table_vars, TABLE_INPUTS)
@@ -110,8 +116,8 @@ def run(args):
     if args.csv:
         np.savetxt(args.csv, np.column_stack([r[name] for name in r.dtype.names]), delimiter=",",
                    header=",".join(r.dtype.names), comments="", fmt="%.17g")
-    print(f"Rod on shaker table: {rod} + {table}, master {args.master} (Jacobi, zero-order hold), "
-          f"{args.coupling} coupling, "
+    print(f"Rod on shaker table: {rod} + {table} (FMI {args.fmi_version}.0), master {args.master} "
+          f"(Jacobi, zero-order hold), {args.coupling} coupling, "
           f"h = {args.step:g} s, t = 0 .. {args.stop:g} s ({n} steps, {seconds:.2f} s)")
     contact_time = math.sqrt(rod_si.m / rod_si.k)
     start = (f"theta0 = {case.theta0:.4g}, v0 = {case.v0:.4g}, phi0 = {case.phi0:.4g} (on the table, relative to it)"

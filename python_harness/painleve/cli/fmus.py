@@ -10,6 +10,7 @@ from .errors import UsageError, one_line
 DEFAULT_FMU = "build/PainleveRod.fmu"
 DEFAULT_ROD_FMU = "build/PainleveRodSI.fmu"
 DEFAULT_TABLE_FMU = "build/ShakerTable.fmu"
+DEFAULT_FMI3_DIR = "build/fmi3"        # the FMI 3.0 FMUs (not installed with the package)
 
 # The variables the harness reads and sets: an FMU without them is another model's.
 REQUIRED_VARIABLES = ("alpha", "mu", "delta", "epsilon", "x", "v", "y", "w", "theta", "phi", "mode", "contact")
@@ -93,23 +94,29 @@ def _instantiates(p):
         raise UsageError(f"{p}: {err}; rebuild it (`bash run.sh main`) or give another PainleveRod.fmu") from None
 
 
-def coupled_fmu(path, role):
+def coupled_fmu(path, role, fmi_version="2.0"):
     """The rod's or the table's FMU for `painleve couple`, checked so that a wrong one ends in one
-    line: missing, not an FMU, not FMI 2.0 (libcosim loads FMI 1.0 and 2.0 only), another model,
+    line: missing, not an FMU, not of fmi_version ("2.0", or "3.0": build/fmi3/), another model,
     no Co-Simulation, no binary for this platform. Returns the path and its variables by name."""
     default, required = {"rod": (DEFAULT_ROD_FMU, ROD_VARIABLES), "table": (DEFAULT_TABLE_FMU, TABLE_VARIABLES)}[role]
+    if fmi_version == "3.0":
+        default = f"{DEFAULT_FMI3_DIR}/{pathlib.Path(default).name}"
     if path is None:
-        path = _repository_or_bundled(default)
+        path = _repository_or_bundled(default) if fmi_version == "2.0" else default
     p = pathlib.Path(path)
     where = f"painleve couple: --{role} {p}"
     if not p.exists():
-        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default}), "
-                         f"`pip install` the repository (it installs one with the package) or give the path of one")
+        installed = ", `pip install` the repository (it installs one with the package)" if fmi_version == "2.0" else ""
+        raise UsageError(f"{where}: no such file; build it with `bash run.sh main` (it writes {default})"
+                         f"{installed} or give the path of one")
     if p.is_dir() or not zipfile.is_zipfile(p):
         raise UsageError(f"{where} is not an FMU (a zip archive such as {default}); give the .fmu file")
     version = _fmi_version(p)
-    if version != "2.0":
-        raise UsageError(f"{where} is an FMI {version} FMU; the coupled study runs FMI 2.0 FMUs (build/*.fmu)")
+    if version not in ("2.0", "3.0"):
+        raise UsageError(f"{where} is an FMI {version} FMU; the coupled study runs FMI 2.0 and 3.0 FMUs")
+    if version != fmi_version:
+        raise UsageError(f"{where} is an FMI {version} FMU; --fmi-version {fmi_version[0]} couples FMI {fmi_version} "
+                         f"FMUs ({default}): give --fmi-version {version[0]} to couple it")
     from fmpy import platform, read_model_description, supported_platforms
     try:
         md = read_model_description(str(p))

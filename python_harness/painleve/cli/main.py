@@ -15,8 +15,9 @@ The command parses and delegates: each command is a module here with its options
 import os
 import sys
 
+from ..experiments import interrupt
 from . import couple, figures, iwc, sweep, validate
-from .errors import UsageError, one_line, user_error
+from .errors import Interrupted, UsageError, one_line, user_error
 from .options import Parser
 
 COMMANDS = {"iwc": iwc, "validate": validate, "figures": figures, "sweep": sweep, "couple": couple}
@@ -45,12 +46,17 @@ def main(argv=None):
             unknown = next((a for a in extra if a.startswith("-")), extra[0])
             raise UsageError(f"painleve {args.command}: unknown option or parameter {unknown!r} "
                              f"(see `painleve {args.command} --help` for the options)")
-        return COMMANDS[args.command].run(args)
+        with interrupt.caught():
+            status = COMMANDS[args.command].run(args)
+            interrupt.check()   # a Ctrl-C that Python dropped (in a C callback) while the command ran
+        return status
     except BrokenPipeError:     # `painleve ... | head`: the reader left; say nothing more
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
     except (Exception, KeyboardInterrupt) as err:
-        known = user_error(err, command)
+        # A failure that a Ctrl-C caused (its KeyboardInterrupt dropped in a C callback) is the Ctrl-C.
+        dropped = interrupt.pending() and not isinstance(err, (KeyboardInterrupt, Interrupted))
+        known = user_error(KeyboardInterrupt() if dropped else err, command)
         if known is None:
             if os.environ.get("PAINLEVE_TRACEBACK"):
                 raise

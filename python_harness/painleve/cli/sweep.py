@@ -2,7 +2,6 @@
 import argparse
 import pathlib
 import re
-import signal
 import textwrap
 
 from .errors import Interrupted, RunError, UsageError, one_line
@@ -65,9 +64,7 @@ def run(args):
         raise UsageError(f"painleve sweep: {err}") from None
     output_path(args.out, "painleve sweep: --out", directory=pathlib.Path(args.out).suffix.lower() in (".parquet", ".pq"))
     fmu = fmu_file(args.fmu)
-    # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly (even where a shell started it ignoring SIGINT).
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    signal.signal(signal.SIGTERM, _interrupt)
+    # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly: main (interrupt.caught) makes them KeyboardInterrupt.
     try:
         result = run_sweep(spec, fmu, args.out, fmi_type=FMI_TYPES[args.interface], scheduler=args.scheduler,
                            workers=args.workers, batch=max(1, args.batch), serial=args.serial,
@@ -100,7 +97,3 @@ def scheduler_address(text):
     if not re.fullmatch(r"((tcp|tls|ucx|ws|wss)://)?[A-Za-z0-9._\-\[\]:]+:\d{1,5}", text):
         raise argparse.ArgumentTypeError(f"{text!r} is not a dask scheduler address such as tcp://host:8786")
     return text
-
-
-def _interrupt(signum, frame):
-    raise KeyboardInterrupt

@@ -2,6 +2,7 @@
 import pathlib
 import time
 
+from ..experiments import interrupt
 from ..experiments.strict_json import to_json
 from . import body
 from .errors import UsageError
@@ -53,6 +54,7 @@ def run(args):
     checks = validate(fmu, interfaces=interfaces, sample=args.sample, law=dict(kappa=args.kappa, beta=args.beta))
     seconds = time.monotonic() - start
     digest = FmuBlob.read(fmu).digest
+    interrupt.check()           # nothing written after a Ctrl-C
     if args.report:
         path = pathlib.Path(args.report)
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -17,7 +17,8 @@ value as the FMU read it back after the step: what it held over [t_(k-1), t_k]).
   type was not found!") and applies inline parameter bindings to parameters and inputs only
   (`run_libcosim` sets the states' start values). The initialization transfers initial outputs
   to inputs. Its observer reads an input as the value held in the step.
-- ecos (ecospy 0.7.2, PyPI; Debian's libtbb12): fixed-step algorithm, Jacobi (each instance:
+- ecos (ecospy 0.7.2, PyPI; Debian's libtbb12), the one of the three that runs FMI 3.0 FMUs
+  (FMI3_MASTERS): fixed-step algorithm, Jacobi (each instance:
   set inputs, step, get outputs, in parallel; then connections). It applies a parameter set
   of the SSP by name at init (ssp.START_VALUES), states included, and transfers the initial
   outputs. It reads an input back as the value already copied for the next step; `run_ecos`
@@ -36,6 +37,13 @@ import numpy as np
 from .ssp import START_VALUES, parameter_set, start_values
 
 MASTERS = ("fmpy", "libcosim", "ecos")
+# The masters that run FMI 3.0 FMUs, and why each other one does not (docs/coupling.md; each a test).
+FMI3_MASTERS = ("ecos",)
+NO_FMI3 = {
+    "fmpy": "fmpy 0.3.32's simulate_ssp instantiates every FMU that is not FMI 1.0 as an FMI 2.0 FMU2Slave "
+            "(fmpy/ssp/simulation.py, instantiate_fmu), which looks for binaries/linux64",
+    "libcosim": "libcosim (libcosimpy 0.0.6) imports FMI 1.0 and 2.0 only: \"Unsupported FMI version\"",
+}
 
 
 class MasterUnavailable(RuntimeError):
@@ -145,6 +153,23 @@ def run_libcosim(ssp_path, stop_time, step, record):
     return _table(times, {name: rows[:, j] for j, (_, name) in enumerate(wanted)}, record)
 
 
+@contextlib.contextmanager
+def _quiet_stdout():
+    """Holds back what C code prints on stdout (file descriptor 1): ecos 0.7.2 (its fmi4c) prints
+    'Function "fmi3GetVersion" is not provided by this FMU.' and 'Loading FMI version 3...' for each
+    FMI 3.0 FMU it loads (the FMUs export fmi3GetVersion); its errors come through get_last_error."""
+    import sys
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with open(os.devnull, "w") as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
 def run_ecos(ssp_path, stop_time, step, record):
     try:
         from ecospy import EcosLib, EcosSimulation
@@ -162,7 +187,8 @@ def run_ecos(ssp_path, stop_time, step, record):
     os.environ["TMPDIR"] = scratch
     try:
         try:
-            sim = EcosSimulation(ssp_path=str(ssp_path), step_size=step)
+            with _quiet_stdout():
+                sim = EcosSimulation(ssp_path=str(ssp_path), step_size=step)
         except Exception as err:
             raise RuntimeError(f"ecos: cannot load {ssp_path}: {err}") from None
         with sim:

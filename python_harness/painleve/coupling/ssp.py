@@ -59,9 +59,10 @@ def _number(x):
 
 
 def _types(fmu):
-    """{variable: SSP connector type} of an FMU (libcosim requires the type on every connector)."""
+    """{variable: SSP connector type} of an FMU (libcosim requires the type on every connector);
+    SSP 1.0 names FMI 3.0's Float64 and Int32 Real and Integer, as FMI 2.0's."""
     from fmpy import read_model_description
-    return {v.name: {"Enumeration": "Integer"}.get(v.type, v.type)
+    return {v.name: {"Enumeration": "Integer", "Float64": "Real", "Int32": "Integer"}.get(v.type, v.type)
             for v in read_model_description(str(fmu)).modelVariables}
 
 

@@ -36,6 +36,7 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 from ..experiments.case import Case, horizon
+from ..experiments import interrupt
 from ..experiments.outcome import SimulationError, outcome_of_trajectory
 from . import fmi3_adapter
 from .cs_fast_loop import run_co_simulation
@@ -154,6 +155,7 @@ class Experiment:
         """The instance reset for a new run (after the first); a failure inside raises
         SimulationError naming `what` and quoting the FMU's first error message (the
         cause: after it the instance is in its Error state and refuses what follows)."""
+        interrupt.check()
         if self._used:
             self.instance.reset()
         self._used = True
@@ -161,6 +163,7 @@ class Experiment:
         try:
             yield self.instance
         except Exception as err:
+            interrupt.check()       # a failure that a dropped Ctrl-C caused is the Ctrl-C
             errors = [message for status, _, message in self.messages if status >= FMI2_ERROR]
             raise SimulationError(f"{what}: the FMU stopped: {errors[0] if errors else err}") from err
 

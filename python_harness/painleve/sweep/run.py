@@ -167,9 +167,12 @@ def _connect(scheduler, workers):
     from dask.distributed import Client, LocalCluster
     if scheduler:
         return Client(scheduler, timeout="10s"), None
+    # The workers log CRITICAL only: a batch's failure reaches the driver through its future, and
+    # what else a worker logs at ERROR is its lost connection when a Ctrl-C closes the cluster under
+    # it (a heartbeat that finds the scheduler gone, seen on a loaded machine).
     with _workers_ignore_ctrl_c():
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                               silence_logs=logging.ERROR)
+                               silence_logs=logging.CRITICAL)
     return Client(cluster), cluster
 
 
