@@ -1,102 +1,73 @@
-"""An independent numpy model of the compliant two-link arm of issue #27 (not the C): a pivot at
-height H above the floor, link 1 (m1, l1, J1 about its middle) to the elbow, link 2 (m2, l2, J2)
-to the tip, which touches the floor; absolute angles theta1, theta2 counterclockwise from +x.
-
-Own mass matrix (Lagrange on the kinetic energy of the two links), own contact kinematics (the
-tip's Jacobian rows W_T = d x/d theta, W_N = d y/d theta and their velocity products), and the
-paper's coefficients of eq Painleve from them, scaled with L = l1 + l2, M = m1 + m2, g:
-q_s = M (G_TN - s mu G_TT), p_s = M (G_NN - s mu G_TN), G = J M^-1 J^T (docs/general_body_theory.md).
-"""
-from dataclasses import dataclass, replace
-
+"""The two-link arm of fmu_src/models/TwoLinkArm written out again for its tests, from the
+links' centres of mass alone (numpy; not the FMU's closed forms): the mass matrix as
+sum m_i J_i^T J_i + J_i e^T e over the links (J_i the centres' Jacobians), gravity and the
+velocity-product terms by differences of the Lagrangian's parts, the tip's Jacobians and
+acceleration by differences of its position."""
 import numpy as np
 
-
-@dataclass(frozen=True)
-class Arm:
-    H: float = 0.8
-    m1: float = 0.5
-    l1: float = 0.5
-    J1: float = 0.5 * 0.5 ** 2 / 12
-    m2: float = 0.5
-    l2: float = 0.5
-    J2: float = 0.5 * 0.5 ** 2 / 12
-    g: float = 1.0
-    mu: float = 1.0
-
-    @property
-    def L(self):
-        return self.l1 + self.l2
-
-    @property
-    def M(self):
-        return self.m1 + self.m2
-
-    def with_(self, **kw):
-        return replace(self, **kw)
+DEFAULTS = dict(m1=0.5, l1=0.3, J1=0.5 * 0.09 / 12, m2=0.3, l2=0.2, J2=0.3 * 0.04 / 12, H=0.44515293252580757,
+                g=9.81)
 
 
-def mass_matrix(arm, th):
-    """M(theta) from T = 1/2 sum (m |v_cm|^2 + J omega^2): centres at l1/2 on link 1, l2/2 beyond the elbow."""
-    k = arm.m2 * arm.l1 * arm.l2 / 2 * np.cos(th[0] - th[1])
-    return np.array([[arm.m1 * arm.l1 ** 2 / 4 + arm.J1 + arm.m2 * arm.l1 ** 2, k],
-                     [k, arm.m2 * arm.l2 ** 2 / 4 + arm.J2]])
+def centres(q, p):
+    """The links' centres of mass: link 1 at half of l1 from the pivot, link 2 half of l2 past the elbow."""
+    t1, t2 = q
+    pivot = np.array([0.0, p["H"]])
+    elbow = pivot + p["l1"] * np.array([np.cos(t1), np.sin(t1)])
+    return (pivot + 0.5 * p["l1"] * np.array([np.cos(t1), np.sin(t1)]),
+            elbow + 0.5 * p["l2"] * np.array([np.cos(t2), np.sin(t2)]))
 
 
-def applied(arm, th, om):
-    """Generalized gravity minus the velocity terms of Lagrange's equations (absolute angles)."""
-    k = arm.m2 * arm.l1 * arm.l2 / 2 * np.sin(th[0] - th[1])
-    gravity = -arm.g * np.array([(arm.m1 / 2 + arm.m2) * arm.l1 * np.cos(th[0]), arm.m2 * arm.l2 / 2 * np.cos(th[1])])
-    return gravity - np.array([k * om[1] ** 2, -k * om[0] ** 2])
+def tip(q, p):
+    t1, t2 = q
+    return np.array([p["l1"] * np.cos(t1) + p["l2"] * np.cos(t2), p["H"] + p["l1"] * np.sin(t1) + p["l2"] * np.sin(t2)])
 
 
-def tip(arm, th):
-    """(x, y) of the tip."""
-    return (arm.l1 * np.cos(th[0]) + arm.l2 * np.cos(th[1]),
-            arm.H + arm.l1 * np.sin(th[0]) + arm.l2 * np.sin(th[1]))
+def jacobian(f, q, h=1e-6):
+    q = np.asarray(q, float)
+    cols = [(f(q + h * e) - f(q - h * e)) / (2 * h) for e in np.eye(len(q))]
+    return np.array(cols).T
 
 
-def jacobian(arm, th):
-    """Rows W_T (tangential, x) and W_N (normal, y): (v, w) = J omega."""
-    return np.array([[-arm.l1 * np.sin(th[0]), -arm.l2 * np.sin(th[1])],
-                     [arm.l1 * np.cos(th[0]), arm.l2 * np.cos(th[1])]])
+def centre_jacobians(q, p):
+    """d(centre)/dq of each link: link 1's turns with theta1 at half of l1; link 2's with theta1 at
+    the elbow (l1) and with theta2 at half of l2."""
+    s1, c1, s2, c2 = np.sin(q[0]), np.cos(q[0]), np.sin(q[1]), np.cos(q[1])
+    l1, l2 = p["l1"], p["l2"]
+    return (np.array([[-0.5 * l1 * s1, 0.0], [0.5 * l1 * c1, 0.0]]),
+            np.array([[-l1 * s1, -0.5 * l2 * s2], [l1 * c1, 0.5 * l2 * c2]]))
 
 
-def velocity_products(arm, th, om):
-    """(dJ/dt) omega: the tip's acceleration at zero angular acceleration."""
-    return np.array([-arm.l1 * np.cos(th[0]) * om[0] ** 2 - arm.l2 * np.cos(th[1]) * om[1] ** 2,
-                     -arm.l1 * np.sin(th[0]) * om[0] ** 2 - arm.l2 * np.sin(th[1]) * om[1] ** 2])
+def mass_matrix(q, p):
+    """sum over links of m J_c^T J_c (the centre's translation) + J e_i e_i^T (link i turns with theta_i)."""
+    M = np.zeros((2, 2))
+    for i, (Jc, m, J) in enumerate(zip(centre_jacobians(q, p), (p["m1"], p["m2"]), (p["J1"], p["J2"]))):
+        e = np.eye(2)[i]
+        M += m * Jc.T @ Jc + J * np.outer(e, e)
+    return M
 
 
-def free_acceleration(arm, th, om):
-    """(v', w') without contact force, and M^-1."""
-    minv = np.linalg.inv(mass_matrix(arm, th))
-    return jacobian(arm, th) @ minv @ applied(arm, th, om) + velocity_products(arm, th, om), minv
+def potential(q, p):
+    c1, c2 = centres(q, p)
+    return p["g"] * (p["m1"] * c1[1] + p["m2"] * c2[1])
 
 
-def coefficients(arm, th, om):
-    """Scaled eq Painleve coefficients a, b, p_+-, q_+-, S_w and the generalized-velocity responses
-    c_+- = M^-1 (W_N - s mu W_T) (scaled: per unit M g of F_N, rates in sqrt(g/L))."""
-    (ab, minv), J = free_acceleration(arm, th, om), jacobian(arm, th)
-    G = arm.M * J @ minv @ J.T
-    out = dict(a=ab[0] / arm.g, b=ab[1] / arm.g)
-    for s, name in ((1, "plus"), (-1, "minus")):
-        out[f"q_{name}"] = G[0, 1] - s * arm.mu * G[0, 0]
-        out[f"p_{name}"] = G[1, 1] - s * arm.mu * G[1, 0]
-        out[f"c_{name}"] = arm.M * minv @ (J[1] - s * arm.mu * J[0]) * arm.L
-    with np.errstate(divide="ignore", invalid="ignore"):   # G_TT = 0 where the tip cannot slip (W_T = 0)
-        out["S_w"] = np.linalg.det(G) / G[0, 0]
-    return out
+def energy(q, u, p):
+    return 0.5 * u @ mass_matrix(q, p) @ u + potential(q, p)
 
 
-def floor_angle(arm, theta1, branch=-1):
-    """theta2 that puts the tip on the floor (y = 0) for a given theta1; branch picks cos theta2's sign."""
-    s2 = -(arm.H + arm.l1 * np.sin(theta1)) / arm.l2
-    if abs(s2) > 1:
-        raise ValueError(f"the tip cannot reach the floor at theta1 = {theta1}")
-    return np.arcsin(s2) if branch > 0 else -np.pi - np.arcsin(s2)
+def free_acceleration(q, u, p, h=1e-5):
+    """u' with no contact force: M u' = -dV/dq - (dM/dt u - 1/2 d(u^T M u)/dq)."""
+    q, u = np.asarray(q, float), np.asarray(u, float)
+    M = mass_matrix(q, p)
+    dV = jacobian(lambda qq: np.atleast_1d(potential(qq, p)), q)[0]
+    Mdot = (mass_matrix(q + h * u, p) - mass_matrix(q - h * u, p)) / (2 * h)
+    dT = jacobian(lambda qq: np.atleast_1d(0.5 * u @ mass_matrix(qq, p) @ u), q)[0]
+    return np.linalg.solve(M, -dV - Mdot @ u + dT)
 
 
-def rates(arm, th, v, w):
-    """omega giving the tip velocity (v, w)."""
-    return np.linalg.solve(jacobian(arm, th), [v, w])
+def tip_acceleration(q, u, udot, p, h=1e-4):
+    """d^2/dt^2 of the tip along q(t) = q + u t + udot t^2/2, by central differences in t."""
+    q, u, udot = (np.asarray(a, float) for a in (q, u, udot))
+    at = lambda t: tip(q + u * t + 0.5 * udot * t * t, p)  # noqa: E731
+    return (at(h) - 2 * at(0.0) + at(-h)) / (h * h)

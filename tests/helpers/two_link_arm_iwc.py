@@ -1,4 +1,4 @@
-"""Direct simulation of the compliant two-link arm (helpers.two_link_arm) through an impact
+"""Direct simulation of the compliant two-link arm (helpers.arm_lagrange) through an impact
 without collision, by its own equations of motion in (theta, omega): no coefficient of eq Painleve,
 no Filippov formula, no phase the theory predicts is assumed.
 
@@ -12,7 +12,7 @@ angles can be of the order eps^2 L the initial layer needs."""
 import numpy as np
 import scipy.integrate
 
-from .two_link_arm import applied, jacobian, mass_matrix, tip, velocity_products
+from .arm_lagrange import applied, jacobian, mass_matrix, tip, velocity_products
 
 
 def _accel(arm, th, om, fn, s, k_t=None):

@@ -1,5 +1,5 @@
 """The paper's theory for d = 2 (docs/general_body_theory.md) against direct simulation of an
-independent numpy model of the compliant two-link arm (helpers.two_link_arm, helpers.two_link_arm_iwc).
+independent numpy model of the compliant two-link arm (helpers.arm_lagrange, helpers.two_link_arm_iwc).
 
 The model is first checked on its own (energy of free motion, contact responses), then the
 theory's claims: the stick is the Filippov combination with the a-term the paper drops, the
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import scipy.integrate
 
-from helpers.two_link_arm import (Arm, applied, coefficients, floor_angle, jacobian, mass_matrix, rates, tip,
+from helpers.arm_lagrange import (Arm, applied, coefficients, floor_angle, jacobian, mass_matrix, rates, tip,
                                   velocity_products)
 from helpers.two_link_arm_iwc import _accel, lift_off_ratio, simulate
 from painleve.theory import general as G
