@@ -115,3 +115,20 @@ def test_theorem_2_on_the_fmu_splits_at_w1_star(body):
         out = body.iwc(body.floor_start(values, 1.0, eps * f * w1s, guess=dict(theta2=THETA2)))
         assert out.stuck == iwc
         assert (out.w == pytest.approx(G.e(delta, co), rel=0.01)) if iwc else (0 < out.w < 20 * eps)
+
+
+def test_the_fmi3_arm_through_simulate_fmu_does_what_the_fmi2_arm_does(body):
+    """build/fmi3/TwoLinkArm.fmu runs through fmpy's simulate_fmu (FMI 3.0), the FMI 2.0 one through the fast
+    loop: the same start, the same e, the same IWC to the solvers' tolerance, converging to e."""
+    with Body(built_fmu("fmi3", "TwoLinkArm.fmu")) as arm3:
+        errors = []
+        for eps in (1e-4, 1e-5, 1e-6):
+            values = dict(PARAMS, theta1=THETA1)
+            start3 = arm3.floor_start(arm3.compliance(values, eps, 1.0), V0, guess=dict(theta2=THETA2))
+            start2 = body.floor_start(body.compliance(values, eps, 1.0), V0, guess=dict(theta2=THETA2))
+            assert start3 == pytest.approx(start2, rel=1e-12, abs=1e-14)
+            e = G.e(1.0, arm3.coefficients(start3)[0])
+            out3, out2 = arm3.iwc(start3), body.iwc(start2)
+            assert out3.stuck and out3.w == pytest.approx(out2.w, rel=1e-4)
+            errors.append(abs(out3.w / V0 - e))
+        assert errors[-1] < errors[0] / 10 and errors[-1] < 3e-3 * e

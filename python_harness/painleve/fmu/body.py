@@ -15,7 +15,7 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
 - `iwc(values)`: the run from that start until the contact point, having touched, is back at
   y = 0 (Model Exchange, fmpy's CVode from event to event, me_fast_loop), its state there.
 
-FMI 2.0 Model Exchange (the fast loop's FMI 2.0 calls)."""
+FMI 2.0 Model Exchange through the fast loop's FMI 2.0 calls; FMI 3.0 through fmpy's simulate_fmu."""
 import math
 from dataclasses import dataclass
 
@@ -58,9 +58,6 @@ class Body:
         if missing:
             self.close()
             raise BodyError(f"{fmu_path} is not a body FMU: it has no variable {', '.join(missing)}")
-        if not md.fmiVersion.startswith("2."):
-            self.close()
-            raise BodyError(f"{fmu_path}: a body runs through FMI 2.0 Model Exchange; this is FMI {md.fmiVersion}")
         self.states = [d.variable.derivative.name for d in md.derivatives]
         self.name = md.modelName
 
@@ -170,6 +167,8 @@ class Body:
         raise SimulationError(f"{self.name}: no return to y = 0 before t = {stop / 2:g}")
 
     def _run(self, values, rtol, stop_time):
+        if not self.experiment.model_description.fmiVersion.startswith("2."):
+            return self._run_trajectory(values, rtol, stop_time)
         seen = dict(touched=False, stuck=False, events=0)
         back = {}
         has_mode = "mode" in self.experiment.vr
@@ -194,3 +193,29 @@ class Body:
             return None
         return BodyOutcome(w=back["w"], v=back["v"], y=back["y"], t_return=back["t"], stuck=seen["stuck"],
                            events=seen["events"], state={s: back[s] for s in self.states})
+
+    def _run_trajectory(self, values, rtol, stop_time):
+        """An FMI 3.0 FMU's run: fmpy's simulate_fmu (Model Exchange, CVode, events recorded as two rows each),
+        stopped one step after the return; the return is the first row after contact with contact off, y >= 0."""
+        seen = dict(touched=False, back=False)
+
+        def step_finished(time, recorder):
+            if seen["back"]:
+                return False
+            contact = bool(self.experiment.instance.getBoolean([self.experiment.vr["contact"]])[0])
+            seen["touched"] |= contact
+            seen["back"] = seen["touched"] and not contact and self.experiment.read(["y"])["y"] >= 0
+            return True
+        names = list(CONTACT) + self.states + ["contact"] + (["mode"] if "mode" in self.experiment.vr else [])
+        r = self.experiment._simulate(f"{self.name} from {values}", start_values=dict(values), output=names,
+                                      stop_time=stop_time, output_interval=stop_time / 500, relative_tolerance=rtol,
+                                      solver="CVode", step_finished=step_finished)
+        touched = np.maximum.accumulate(r["contact"].astype(bool))
+        back = np.nonzero(touched & ~r["contact"].astype(bool) & (r["y"] >= 0))[0]
+        if back.size == 0:
+            return None
+        i = back[0]
+        stuck = bool(np.any((r["mode"][:i] == 0) & r["contact"][:i].astype(bool))) if "mode" in names else False
+        return BodyOutcome(w=float(r["w"][i]), v=float(r["v"][i]), y=float(r["y"][i]), t_return=float(r["time"][i]),
+                           stuck=stuck, events=int(np.sum(np.diff(r["time"][:i + 1]) == 0)),
+                           state={s: float(r[s][i]) for s in self.states})
