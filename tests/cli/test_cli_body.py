@@ -68,3 +68,14 @@ def test_the_paradox_region_of_the_rod_is_its_wedge(tmp_path):
 def test_bad_body_input_ends_in_one_line(args, words):
     r = run("iwc", "--fmu", built_fmu("PainleveRod.fmu"), *args)
     assert r.returncode == 2 and words in one_line_error(r)
+
+
+@pytest.mark.parametrize("w10,outcome", [(-0.1, "lift-off"), (-3.0, "IWC")])
+def test_theorem_2_through_the_body_path_splits_at_w1_star(w10, outcome):
+    """Figure `video`'s grazing state (indeterminate): w1* = -0.4177 (eq w1star); above it lift-off, below IWC."""
+    args = ["--set", "theta=0.9463", "--set", "phi=1.6654", "--set", "x=0", "--w10", w10, "--eps", "1e-4"]
+    out = json.loads(run("iwc", "--fmu", built_fmu("PainleveRod.fmu"), *args, "--json", check_rc=0).stdout)
+    assert out["predicted"]["w1_star"] == pytest.approx(A.w1_star(0.9463, 1.6654, 1.0), rel=1e-9)
+    assert out["simulated"]["iwc"] == (outcome == "IWC")
+    table = run("iwc", "--fmu", built_fmu("PainleveRod.fmu"), *args, check_rc=0).stdout
+    assert next(line for line in table.splitlines() if line.startswith("outcome")).split()[1:] == [outcome, outcome]

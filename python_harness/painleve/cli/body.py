@@ -85,9 +85,13 @@ def run_iwc(args, fmu):
     print(f"quadrant: {predicted.quadrant}; " + (predicted.hypotheses or f"Theorem {predicted.theorem} applies")
           + (f"; w1* = {predicted.w1_star:.6g}" if predicted.theorem == 2 else ""))
     print(f"{'quantity':<22}{'simulated':<16}{'analytic (eps -> 0)':<22}difference")
-    print(f"{'outcome':<22}{'IWC' if outcome.stuck else 'lift-off':<16}{'IWC' if not predicted.hypotheses else '-':<22}")
-    diff = f"{error:+.3e} ({error / predicted.e:+.3%} of e)" if not math.isnan(predicted.e) else ""
-    print(f"{'w/v0 at return':<22}{_fmt(outcome.w / v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
+    expected = "IWC" if predicted.theorem == 1 or case.w0 / case.epsilon < predicted.w1_star else "lift-off"
+    print(f"{'outcome':<22}{'IWC' if outcome.stuck else 'lift-off':<16}{expected:<22}")
+    if expected == "lift-off":
+        print(f"{'w at return':<22}{_fmt(outcome.w):<16}{'O(eps)':<22}w/eps = {outcome.w / case.epsilon:.3g}")
+    else:
+        diff = f"{error:+.3e} ({error / predicted.e:+.3%} of e)" if not math.isnan(predicted.e) else ""
+        print(f"{'w/v0 at return':<22}{_fmt(outcome.w / v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
     print(f"{'v at return':<22}{_fmt(outcome.v):<16}{'0 + O(eps)':<22}")
     print(f"{'t_return':<22}{_fmt(outcome.t_return):<16}{'O(eps ln 1/eps)':<22}events: {outcome.events}")
     return 0
