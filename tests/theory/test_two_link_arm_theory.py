@@ -84,8 +84,8 @@ def test_arm_iwc_converges_to_e_like_eps_ln_eps(delta):
     assert err[-1] < 3e-3 * e                       # e to a few parts in 1e3 at eps = 1e-6
     assert err[-1] < err[0] / 100                   # three decades of eps: the error falls > 100 times
     assert np.all(scaled[1:] < 3 * scaled[0])       # and no slower than eps ln(1/eps)
-    for eps, (_, out) in zip(EPS, runs):            # the IWC: stick, then flight; v and theta barely moved
-        assert [p[0] for p in out["phases"]][0] == "v=0" and "lift" in [p[0] for p in out["phases"]]
+    for eps, (_, out) in zip(EPS, runs):            # the IWC: stick, a fold (which one: the test below), flight
+        assert [p[0] for p in out["phases"]][0] == "v=0" and [p[0] for p in out["phases"]][2:] == ["lift", "return"]
         assert abs(out["v"]) < 100 * eps * V0
         assert np.max(np.abs(out["th"] - TH)) < 20 * eps * np.log(1 / eps)
 
@@ -125,5 +125,26 @@ def test_an_si_arm_of_unequal_links_converges_to_its_e():
     co = G.Coefficients.of(coefficients(arm, th, rates(arm, th, v0, 0.0)))
     G.check(co, 1, delta=delta, v0=v0)
     e = G.e(delta, co)
-    err = [abs(lift_off_ratio(arm, th, v0, eps, delta)[0] - e) for eps in EPS[1:]]
+    runs = [lift_off_ratio(arm, th, v0, eps, delta) for eps in EPS[1:]]
+    err = [abs(r - e) for r, _ in runs]
     assert err[-1] < 3e-3 * e and err[-1] < err[0] / 30
+
+
+@pytest.mark.parametrize("theta1,v0", [(2.9, 0.3), (0.2, 0.5)])
+def test_the_stick_ends_at_the_fold_that_the_sign_of_a_at_its_end_picks(theta1, v0):
+    """§2: as F_N -> 0 the sticking friction tends to a/G_TT, so the stick ends in forward slip if a > 0
+    and backward slip if a < 0, a taken where the stick ends: theta0 and the rates after the impulses of §3
+    (a is quadratic in the rates, which jump by O(1)). The second case starts with a < 0 and still ends
+    forward: a(theta0, omega0) does not decide. Either way w/v0 -> e."""
+    th = np.array([theta1, floor_angle(ARM, theta1, 1)])
+    om0 = rates(ARM, th, v0, 0.0)
+    c = coefficients(ARM, th, om0)
+    co = G.Coefficients.of(c)
+    G.check(co, 1, delta=1.0, v0=v0)
+    om_end = om0 + G.velocity_jump(1.0, co, c["c_plus"], G.filippov_combination(co, c["c_plus"], c["c_minus"]), v0=v0)
+    a_end = coefficients(ARM, th, om_end)["a"]
+    ratio, out = lift_off_ratio(ARM, th, v0, 1e-5, 1.0)
+    assert [p[0] for p in out["phases"]] == ["v=0", "slip+" if a_end > 0 else "slip-", "lift", "return"]
+    assert ratio == pytest.approx(G.e(1.0, co), rel=2e-3)
+    if theta1 == 0.2:
+        assert c["a"] < 0 < a_end
