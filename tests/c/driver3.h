@@ -15,8 +15,13 @@ extern Fmi3Api api3; /* loaded by main */
 
 const char *status3_name(fmi3Status s);
 
-/* The states of FMI 3.0's state machines an instance of PainleveRod can be in
- * (no Configuration Mode: it has no structural parameters; no clocks, no
+/* The value references of continuous state i (0-based) and of its derivative
+ * (the model description's <ContinuousStateDerivative>s, in order). */
+fmi3ValueReference state3_vr(int i);
+fmi3ValueReference derivative3_vr(int i);
+
+/* The states of FMI 3.0's state machines an instance of a model can be in
+ * (no Configuration Mode: the FMUs have no structural parameters; no clocks, no
  * Intermediate Update Mode). Event Mode is reached two ways in each
  * interface: right after initialization, and from Continuous-Time Mode or
  * Step Mode. Co-Simulation's Event Mode needs eventModeUsed; Step Mode is

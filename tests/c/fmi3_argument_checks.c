@@ -16,8 +16,8 @@ static const Fmi3Api *const f = &api3;
 
 void test3_null_arguments(void)
 {
-    fmi3ValueReference vr[1] = { VR_EPSILON };
-    double r[ROD_NX + ROD_NZ] = { 1e-3, 1, 0, 0, 1, 0.5 };
+    fmi3ValueReference vr[1] = { PROFILE_KNOB };
+    double r[MODEL_NX + HARNESS_NZ] = { PROFILE_KNOB_VALUE(1e-3) };
     fmi3Boolean b[2];
     fmi3Int32 i[1];
     size_t n;
@@ -41,13 +41,14 @@ void test3_null_arguments(void)
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3UpdateDiscreteStates", f->UpdateDiscreteStates(c, b, b, b, b, b, NULL));
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3CompletedIntegratorStep", f->CompletedIntegratorStep(c, fmi3True, NULL, b));
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3CompletedIntegratorStep", f->CompletedIntegratorStep(c, fmi3True, b, NULL));
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, NULL, ROD_NX));
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, NULL, MODEL_NX));
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetContinuousStateDerivatives",
-              f->GetContinuousStateDerivatives(c, NULL, ROD_NX));
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, NULL, ROD_NZ));
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetContinuousStates", f->GetContinuousStates(c, NULL, ROD_NX));
+              f->GetContinuousStateDerivatives(c, NULL, MODEL_NX));
+    if (MODEL_NZ > 0)
+        EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, NULL, MODEL_NZ));
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetContinuousStates", f->GetContinuousStates(c, NULL, MODEL_NX));
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetNominalsOfContinuousStates",
-              f->GetNominalsOfContinuousStates(c, NULL, ROD_NX));
+              f->GetNominalsOfContinuousStates(c, NULL, MODEL_NX));
     EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3GetNumberOfContinuousStates", f->GetNumberOfContinuousStates(c, NULL));
     EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3GetNumberOfEventIndicators", f->GetNumberOfEventIndicators(c, NULL));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetDirectionalDerivative",
@@ -74,8 +75,8 @@ void test3_null_arguments(void)
 
 void test3_array_sizes(void)
 {
-    const fmi3ValueReference vr[2] = { VR_EPSILON, VR_ALPHA };
-    double r[ROD_NX + ROD_NZ + 2] = { 1e-3, 3, 0, 0, 1, 0.5 };
+    const fmi3ValueReference vr[2] = { PROFILE_KNOB, state3_vr(0) };
+    double r[MODEL_NX + HARNESS_NZ + 2] = { PROFILE_KNOB_VALUE(1e-3) };
     fmi3Int32 i[2];
     fmi3Boolean b[2];
     /* nValues != nValueReferences: every variable is a scalar. */
@@ -99,7 +100,7 @@ void test3_array_sizes(void)
         EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, NULL, n));
     }
     /* The arrays of Model Exchange: a wrong size is an error, the array real. */
-    static const size_t WRONG[] = { 0, ROD_NX - 1, ROD_NX + 1 };
+    static const size_t WRONG[] = { 0, MODEL_NX - 1, MODEL_NX + 1 };
     for (size_t k = 0; k < sizeof WRONG / sizeof WRONG[0]; ++k) {
         EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, r, WRONG[k]));
         EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetContinuousStates", f->GetContinuousStates(c, r, WRONG[k]));
@@ -108,15 +109,24 @@ void test3_array_sizes(void)
         EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetNominalsOfContinuousStates",
                   f->GetNominalsOfContinuousStates(c, r, WRONG[k]));
     }
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, r, ROD_NZ + 1));
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, r, ROD_NZ - 1));
-    /* nSeed and nSensitivity: the knowns' and unknowns' counts (directional), swapped (adjoint). */
-    const fmi3ValueReference u[2] = { VR_DER_V, VR_DER_W }, k3[3] = { VR_Y, VR_W, VR_THETA };
-    EXPECT_IN(M3_EVENT, fmi3OK, "", f->GetDirectionalDerivative(c, u, 2, k3, 3, r, 3, r + 3, 2));
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, r, MODEL_NZ + 1));
+    if (MODEL_NZ > 0)
+        EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetEventIndicators", f->GetEventIndicators(c, r, (size_t)MODEL_NZ - 1));
+    /* nSeed and nSensitivity: the knowns' and unknowns' counts (directional), swapped (adjoint):
+     * the last state's derivative by every state (at least two). */
+    const fmi3ValueReference u[1] = { derivative3_vr(MODEL_NX - 1) };
+    fmi3ValueReference k[MODEL_NX];
+    double seed[MODEL_NX], out[MODEL_NX];
+    for (int j = 0; j < MODEL_NX; ++j) {
+        k[j] = state3_vr(j);
+        seed[j] = 1;
+    }
+    const size_t n = MODEL_NX;
+    EXPECT_IN(M3_EVENT, fmi3OK, "", f->GetDirectionalDerivative(c, u, 1, k, n, seed, n, out, 1));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetDirectionalDerivative",
-              f->GetDirectionalDerivative(c, u, 2, k3, 3, r, 2, r + 3, 3));
-    EXPECT_IN(M3_EVENT, fmi3OK, "", f->GetAdjointDerivative(c, u, 2, k3, 3, r, 2, r + 3, 3));
-    EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetAdjointDerivative", f->GetAdjointDerivative(c, u, 2, k3, 3, r, 3, r + 3, 2));
+              f->GetDirectionalDerivative(c, u, 1, k, n, seed, 1, out, n));
+    EXPECT_IN(M3_EVENT, fmi3OK, "", f->GetAdjointDerivative(c, u, 1, k, n, seed, 1, out, n));
+    EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetAdjointDerivative", f->GetAdjointDerivative(c, u, 1, k, n, seed, n, out, 1));
 }
 
 /* Reads `vr` with the getter of type `t` (0..13: Float32 .. Binary) into scratch. */
@@ -195,11 +205,11 @@ static const char *const TYPE_NAME[] = { "Float32", "Float64", "Int8", "UInt8", 
 
 /* Every getter and setter type with every value reference of the model
  * description and some beyond: only the variable's own type reads it, and
- * only parameters and states (initial = "exact") are set in Instantiated, through fmi3SetFloat64. */
+ * only parameters, states (initial = "exact") and inputs are set in Instantiated, through fmi3SetFloat64. */
 void test3_types_and_value_references(void)
 {
     /* Beyond the model's variables, its event indicators and time (fmi3_instance.h). */
-    static const fmi3ValueReference UNKNOWN[] = { VR_COUNT + ROD_NZ + 1, 1000, 0x80000000u, UINT_MAX };
+    static const fmi3ValueReference UNKNOWN[] = { VR_COUNT + MODEL_NZ + 1, 1000, 0x80000000u, UINT_MAX };
     for (int t = 0; t < N_TYPES; ++t) {
         char get_call[40], set_call[40];
         snprintf(get_call, sizeof get_call, "fmi3Get%s", TYPE_NAME[t]);
@@ -208,7 +218,8 @@ void test3_types_and_value_references(void)
             const MdVariable *v = md_var(index);
             const int own = v->type == MD_REAL ? 1 : v->type == MD_INTEGER ? 6 : 10;
             EXPECT_IN(M3_EVENT, t == own ? fmi3OK : fmi3Error, get_call, get_as(c, t, v->vr));
-            const bool settable = t == 1 && (v->causality == MD_PARAMETER || v->state); /* initial = "exact" */
+            /* initial = "exact", and inputs (which FMI 3.0 lets be set there) */
+            const bool settable = t == 1 && (v->causality == MD_PARAMETER || v->causality == MD_INPUT || v->state);
             EXPECT_IN(M3_INSTANTIATED, settable ? fmi3OK : fmi3Error, set_call, set_as(c, t, v->vr));
         }
         for (size_t k = 0; k < sizeof UNKNOWN / sizeof UNKNOWN[0]; ++k) {
@@ -219,8 +230,8 @@ void test3_types_and_value_references(void)
     /* The last of many value references is unknown: every element is checked. */
     fmi3ValueReference vr[64];
     double v[64];
-    for (unsigned k = 0; k < 64; ++k) vr[k] = k % (VR_COUNT + ROD_NZ + 1);
+    for (unsigned k = 0; k < 64; ++k) vr[k] = k % (VR_COUNT + MODEL_NZ + 1);
     EXPECT_IN(M3_CONTINUOUS, fmi3OK, "", f->GetFloat64(c, vr, 0, v, 0));
-    vr[63] = VR_COUNT + ROD_NZ + 1;
+    vr[63] = VR_COUNT + MODEL_NZ + 1;
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3GetFloat64", f->GetFloat64(c, vr, 64, v, 64));
 }

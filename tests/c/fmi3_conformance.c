@@ -103,26 +103,28 @@ static fmi3Status serialize_round_trip(Inst3 *in)
     free(bytes);
     return worst(st, f->FreeFMUState(in->c, &s));
 }
-/* der(v), der(w) by y, theta: a pair of every mode that has derivatives (y and
- * theta have initial = "exact": knowns of Initialization Mode too). */
-static fmi3Status directional_derivative(Inst3 *in)
+/* Every state derivative by every state: pairs of every mode that has
+ * derivatives (states have initial = "exact": knowns of Initialization Mode too). */
+static fmi3Status jacobian_product(Inst3 *in, bool adjoint)
 {
-    const fmi3ValueReference unknown[2] = { VR_DER_V, VR_DER_W }, known[2] = { VR_Y, VR_THETA };
-    const double seed[2] = { 1, -0.5 };
-    double out[2] = { NAN, NAN };
-    const fmi3Status st = f->GetDirectionalDerivative(in->c, unknown, 2, known, 2, seed, 2, out, 2);
-    if (st == fmi3OK) CHECK(isfinite(out[0]) && isfinite(out[1]), "directional derivative %g, %g", out[0], out[1]);
+    fmi3ValueReference unknown[MODEL_NX], known[MODEL_NX];
+    double seed[MODEL_NX], out[MODEL_NX];
+    for (int i = 0; i < MODEL_NX; ++i) {
+        unknown[i] = derivative3_vr(i);
+        known[i] = state3_vr(i);
+        seed[i] = i % 2 ? -0.5 : 1;
+        out[i] = NAN;
+    }
+    const fmi3Status st = adjoint ? f->GetAdjointDerivative(in->c, unknown, MODEL_NX, known, MODEL_NX, seed,
+                                                            MODEL_NX, out, MODEL_NX)
+                                  : f->GetDirectionalDerivative(in->c, unknown, MODEL_NX, known, MODEL_NX, seed,
+                                                                MODEL_NX, out, MODEL_NX);
+    for (int i = 0; st == fmi3OK && i < MODEL_NX; ++i)
+        CHECK(isfinite(out[i]), "%s derivative %d: %g", adjoint ? "adjoint" : "directional", i, out[i]);
     return st;
 }
-static fmi3Status adjoint_derivative(Inst3 *in)
-{
-    const fmi3ValueReference unknown[2] = { VR_DER_V, VR_DER_W }, known[2] = { VR_Y, VR_THETA };
-    const double seed[2] = { 1, -0.5 };
-    double out[2] = { NAN, NAN };
-    const fmi3Status st = f->GetAdjointDerivative(in->c, unknown, 2, known, 2, seed, 2, out, 2);
-    if (st == fmi3OK) CHECK(isfinite(out[0]) && isfinite(out[1]), "adjoint derivative %g, %g", out[0], out[1]);
-    return st;
-}
+static fmi3Status directional_derivative(Inst3 *in) { return jacobian_product(in, false); }
+static fmi3Status adjoint_derivative(Inst3 *in) { return jacobian_product(in, true); }
 static fmi3Status update_discrete_states(Inst3 *in)
 {
     fmi3Boolean a, b, c, d, e;
@@ -165,27 +167,28 @@ static fmi3Status set_time(Inst3 *in)
 }
 static fmi3Status set_continuous_states(Inst3 *in)
 {
-    double x[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
-    if (in->state == M3_CONTINUOUS) f->GetContinuousStates(in->c, x, ROD_NX);
-    return f->SetContinuousStates(in->c, x, ROD_NX);
+    double x[MODEL_NX];
+    for (int i = 0; i < MODEL_NX; ++i) x[i] = md_var(md_state_index(i))->start;
+    if (in->state == M3_CONTINUOUS) f->GetContinuousStates(in->c, x, MODEL_NX);
+    return f->SetContinuousStates(in->c, x, MODEL_NX);
 }
 static fmi3Status get_array(Inst3 *in, fmi3GetEventIndicatorsTYPE *get, size_t n)
 {
-    double v[ROD_NX + ROD_NZ];
+    double v[MODEL_NX + HARNESS_NZ];
     for (size_t i = 0; i < n; ++i) v[i] = NAN;
     const fmi3Status st = get(in->c, v, n);
     for (size_t i = 0; st == fmi3OK && i < n; ++i) CHECK(isfinite(v[i]), "element %zu = %g", i, v[i]);
     return st;
 }
-static fmi3Status get_event_indicators(Inst3 *in) { return get_array(in, f->GetEventIndicators, ROD_NZ); }
-static fmi3Status get_continuous_states(Inst3 *in) { return get_array(in, f->GetContinuousStates, ROD_NX); }
-static fmi3Status get_derivatives(Inst3 *in) { return get_array(in, f->GetContinuousStateDerivatives, ROD_NX); }
-static fmi3Status get_nominals(Inst3 *in) { return get_array(in, f->GetNominalsOfContinuousStates, ROD_NX); }
+static fmi3Status get_event_indicators(Inst3 *in) { return get_array(in, f->GetEventIndicators, MODEL_NZ); }
+static fmi3Status get_continuous_states(Inst3 *in) { return get_array(in, f->GetContinuousStates, MODEL_NX); }
+static fmi3Status get_derivatives(Inst3 *in) { return get_array(in, f->GetContinuousStateDerivatives, MODEL_NX); }
+static fmi3Status get_nominals(Inst3 *in) { return get_array(in, f->GetNominalsOfContinuousStates, MODEL_NX); }
 static fmi3Status number_of_states(Inst3 *in)
 {
     size_t n = 0;
     const fmi3Status st = f->GetNumberOfContinuousStates(in->c, &n);
-    if (st == fmi3OK) CHECK(n == ROD_NX, "fmi3GetNumberOfContinuousStates: %zu", n);
+    if (st == fmi3OK) CHECK(n == MODEL_NX, "fmi3GetNumberOfContinuousStates: %zu", n);
     return st;
 }
 static fmi3Status number_of_indicators(Inst3 *in)
@@ -206,7 +209,7 @@ static fmi3Status exit_configuration_mode(Inst3 *in) { return f->ExitConfigurati
 static fmi3Status number_of_dependencies(Inst3 *in)
 {
     size_t n;
-    return f->GetNumberOfVariableDependencies(in->c, VR_DER_W, &n);
+    return f->GetNumberOfVariableDependencies(in->c, derivative3_vr(0), &n);
 }
 
 /* ---------------------------------------------------------- the table */
@@ -262,8 +265,8 @@ static const Row ROWS[] = {
     EACH_TYPE(GETTER_ROW) EACH_TYPE(SETTER_ROW)
     GETTER_ROW(Binary) SETTER_ROW(Binary)
     /* Partial derivatives: Initialization, Event, Continuous-Time, Step Mode, Terminated */
-    { "fmi3GetDirectionalDerivative", "(der(v), der(w) by y, theta)", directional_derivative, GETTERS, fmi3OK, SAME },
-    { "fmi3GetAdjointDerivative", "(der(v), der(w) by y, theta)", adjoint_derivative, GETTERS, fmi3OK, SAME },
+    { "fmi3GetDirectionalDerivative", "(every derivative by every state)", directional_derivative, GETTERS, fmi3OK, SAME },
+    { "fmi3GetAdjointDerivative", "(every derivative by every state)", adjoint_derivative, GETTERS, fmi3OK, SAME },
     /* §2.3.5 Event Mode */
     { "fmi3UpdateDiscreteStates", "", update_discrete_states, ME | CE, fmi3OK, SAME },
     { "fmi3EvaluateDiscreteStates", "", evaluate_discrete_states, ME | CE, fmi3OK, SAME },
@@ -285,7 +288,7 @@ static const Row ROWS[] = {
     /* Calls the importer must not make to this FMU: no structural parameters, no per-element dependencies. */
     { "fmi3EnterConfigurationMode", "", enter_configuration_mode, 0, fmi3OK, SAME },
     { "fmi3ExitConfigurationMode", "", exit_configuration_mode, 0, fmi3OK, SAME },
-    { "fmi3GetNumberOfVariableDependencies", "(der(w))", number_of_dependencies, 0, fmi3OK, SAME },
+    { "fmi3GetNumberOfVariableDependencies", "(a derivative)", number_of_dependencies, 0, fmi3OK, SAME },
 };
 #define N_ROWS (sizeof ROWS / sizeof ROWS[0])
 

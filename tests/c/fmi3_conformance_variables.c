@@ -25,8 +25,8 @@ static bool set_allowed(State3 s, int index)
     const bool not_constant = v->variability != MD_CONSTANT, input = v->causality == MD_INPUT;
     const bool tunable_parameter = v->causality == MD_PARAMETER && v->variability == MD_TUNABLE;
     switch (s) {
-    case M3_INSTANTIATED: case C3_INSTANTIATED: /* §2.3.2 */
-        return not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX);
+    case M3_INSTANTIATED: case C3_INSTANTIATED: /* §2.3.2: inputs too, unlike FMI 2.0.4 */
+        return (not_constant && (v->initial == MD_INITIAL_EXACT || v->initial == MD_INITIAL_APPROX)) || input;
     case M3_INIT: case C3_INIT: /* §2.3.3 */
         return (not_constant && v->initial == MD_INITIAL_EXACT) || input;
     case M3_EVENT: case M3_EVENT_AGAIN: case C3_EVENT: case C3_EVENT_AGAIN: case C3_STEP: case C3_STEP_EM:
@@ -87,7 +87,7 @@ void test3_conformance_variables(void)
     for (int s = 0; s < N3_STATES; ++s) {
         for (int index = 1; index <= MD_N_VARIABLES; ++index) {
             const MdVariable *v = md_var(index);
-            if (!CHECK(v->type <= MD_BOOLEAN, "%s: a type PainleveRod does not have", v->name)) continue;
+            if (!CHECK(v->type <= MD_BOOLEAN, "%s: a type the driver does not handle", v->name)) continue;
             char what[200];
             Inst3 in;
             double value;

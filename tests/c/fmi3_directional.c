@@ -5,12 +5,13 @@
  *   - Initialization Mode: the Float64 <InitialUnknown>s by the knowns with
  *     initial = "exact" (parameters, initial states);
  *   - Event and Continuous-Time Mode, Step Mode: Float64 <Output>s and
- *     <ContinuousStateDerivative>s by the continuous-time states;
+ *     <ContinuousStateDerivative>s by the inputs and continuous-time states;
  *   - "EventIndicators must not be included among v_unknown".
  * Each such call must succeed; where `dependencies` leaves the known out the
  * partial is 0 exactly; the directional derivative equals central differences
  * of fmi3GetFloat64 where the knowns can be set (Initialization Mode:
- * fmi3SetFloat64; Continuous-Time Mode: fmi3SetContinuousStates); the adjoint
+ * fmi3SetFloat64; Continuous-Time Mode: fmi3SetContinuousStates, inputs by
+ * fmi3SetFloat64); the start point is the model's profile's; the adjoint
  * of a pair equals its directional derivative, and with many unknowns and
  * knowns the two give J v and v^T J. Any other pair is an fmi3Error with a
  * message, from either function. */
@@ -22,14 +23,13 @@
 
 static const Fmi3Api *const f = &api3;
 
-/* In contact, slipping forward, away from the switching surfaces, so that
- * central differences stay in one mode; with a nonlinear compliance law
- * (kappa, beta > 0: differences in them may step both ways). */
+/* A point inside one mode of the model, away from its switching surfaces, so
+ * that central differences stay in it (the profile's; inputs among it are set
+ * before initialization too, which FMI 3.0 allows). */
 static const struct {
     fmi3ValueReference vr;
     double value;
-} START[] = { { VR_MU, 1.0 },     { VR_V, 0.2 },     { VR_Y, -2e-7 },   { VR_W, -1e-4 },
-              { VR_THETA, 0.3 },  { VR_PHI, 0.4 },   { VR_KAPPA, 0.5 }, { VR_BETA, 0.5 } };
+} START[] = PROFILE_DD_START;
 
 static bool reach(Inst3 *in, State3 state)
 {
@@ -81,18 +81,21 @@ static double read_float(Inst3 *in, int index)
     return v;
 }
 
+/* Known `index` set the way the mode allows: in Initialization Mode and for
+ * inputs fmi3SetFloat64, states in Continuous-Time Mode fmi3SetContinuousStates. */
 static void set_known(Inst3 *in, int index, double value)
 {
-    if (mode_of(in->state) == MD_MODE_INIT) {
+    const int position = md_state_position(index);
+    if (mode_of(in->state) == MD_MODE_INIT || position < 0) {
         const fmi3ValueReference vr = md_var(index)->vr;
         CHECK(f->SetFloat64(in->c, &vr, 1, &value, 1) == fmi3OK, "fmi3SetFloat64(%s = %g): %s", md_var(index)->name,
               value, harness.last_message);
         return;
     }
-    double x[ROD_NX];
-    CHECK(f->GetContinuousStates(in->c, x, ROD_NX) == fmi3OK, "fmi3GetContinuousStates");
-    x[md_var(index)->vr - VR_X] = value;
-    CHECK(f->SetContinuousStates(in->c, x, ROD_NX) == fmi3OK, "fmi3SetContinuousStates: %s", harness.last_message);
+    double x[MODEL_NX];
+    CHECK(f->GetContinuousStates(in->c, x, MODEL_NX) == fmi3OK, "fmi3GetContinuousStates");
+    x[position] = value;
+    CHECK(f->SetContinuousStates(in->c, x, MODEL_NX) == fmi3OK, "fmi3SetContinuousStates: %s", harness.last_message);
 }
 
 /* d unknown / d known by central differences of fmi3GetFloat64 (FMI 3.0
@@ -118,9 +121,10 @@ static void check_defined_pairs(State3 state)
     md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
     CHECK(nu > 0 && nk > 0, "%s: modelDescription.xml defines %d unknowns and %d knowns", STATE3_NAME[state], nu, nk);
     static double J[MAX_VARS][MAX_VARS];
-    double nominal[ROD_NX] = { 1, 1, 1, 1, 1, 1 };
+    double nominal[MODEL_NX];
+    for (int i = 0; i < MODEL_NX; ++i) nominal[i] = 1;
     if (!state3_is_cs(state))
-        CHECK(f->GetNominalsOfContinuousStates(in.c, nominal, ROD_NX) == fmi3OK, "nominals: %s", harness.last_error);
+        CHECK(f->GetNominalsOfContinuousStates(in.c, nominal, MODEL_NX) == fmi3OK, "nominals: %s", harness.last_error);
     const bool differences = state == M3_INIT || state == M3_CONTINUOUS;
     for (int i = 0; i < nu; ++i) {
         const MdUnknown *u = md_unknown_of_mode(mode, unknowns[i]);
@@ -144,8 +148,8 @@ static void check_defined_pairs(State3 state)
             if (!md_depends(u, knowns[j]))
                 CHECK(J[i][j] == 0, "d %s / d %s = %g in %s, but modelDescription.xml declares no dependency", uname,
                       kname, J[i][j], STATE3_NAME[state]);
-            const MdVariable *kv = md_var(knowns[j]);
-            const double nom = kv->state ? nominal[kv->vr - VR_X] : 1e-6;
+            const int position = md_state_position(knowns[j]);
+            const double nom = position >= 0 ? nominal[position] : 1e-6;
             fd[j] = differences ? central_difference(&in, unknowns[i], knowns[j], nom) : 0;
             scale = fmax(scale, fmax(fabs(fd[j]), fabs(J[i][j])));
         }

@@ -1,5 +1,6 @@
-/* PainleveRod's FMI 3.0 layer through its C ABI, as an importer loads it
- * (dlopen): every fmi3 call in every state of both interfaces against FMI 3.0
+/* A model's FMI 3.0 layer (PainleveRod, or fmu_src/models/NAME as fmi3_driver_NAME,
+ * with what its profile, profiles/NAME.h, says of it) through its C ABI, as an
+ * importer loads it (dlopen): every fmi3 call in every state of both interfaces against FMI 3.0
  * (fmi3_conformance.c, fmi3_directional.c), and robustness: NULL pointers,
  * wrong array sizes (nValues != nValueReferences), unknown value references
  * and every getter and setter type, bad values (NaN, out of range: the

@@ -24,7 +24,7 @@ void test3_instantiation_and_missing_features(void)
           "instantiationToken NULL");
     CHECK(f->InstantiateModelExchange("rod", "{wrong}", "", fmi3False, fmi3False, NULL, harness3_logger) == NULL,
           "instantiationToken wrong");
-    const fmi3ValueReference vr = VR_W;
+    const fmi3ValueReference vr = state3_vr(0);
     CHECK(f->InstantiateCoSimulation("rod", g, "", fmi3False, fmi3False, fmi3False, fmi3False, &vr, 1, NULL,
                                      harness3_logger, NULL) == NULL,
           "required intermediate variables, which the FMU does not provide");
@@ -37,8 +37,8 @@ void test3_instantiation_and_missing_features(void)
     fmi3Instance silent = f->InstantiateModelExchange("rod", g, NULL, fmi3False, fmi3True, NULL, NULL);
     if (CHECK(silent != NULL, "fmi3InstantiateModelExchange without a logger")) {
         const double nan = NAN;
-        const fmi3ValueReference eps = VR_EPSILON;
-        CHECK(f->SetFloat64(silent, &eps, 1, &nan, 1) == fmi3Error, "epsilon = NaN accepted");
+        const fmi3ValueReference knob = PROFILE_KNOB;
+        CHECK(f->SetFloat64(silent, &knob, 1, &nan, 1) == fmi3Error, "the knob = NaN accepted");
         CHECK(f->Reset(silent) == fmi3OK, "fmi3Reset");
         f->FreeInstance(silent);
     }
@@ -64,15 +64,15 @@ void test3_instantiation_and_missing_features(void)
     EXPECT_IN(M3_INIT, fmi3Error, "fmi3SetShiftFraction", f->SetShiftFraction(c, &vr, 1, &counter, &resolution));
     EXPECT_IN(C3_STEP, fmi3Error, "fmi3ActivateModelPartition", f->ActivateModelPartition(c, 0, 0.06));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetNumberOfVariableDependencies",
-              f->GetNumberOfVariableDependencies(c, VR_DER_W, &n));
+              f->GetNumberOfVariableDependencies(c, derivative3_vr(0), &n));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetVariableDependencies",
-              f->GetVariableDependencies(c, VR_DER_W, &element, &independent, &element, &kind, 1));
+              f->GetVariableDependencies(c, derivative3_vr(0), &element, &independent, &element, &kind, 1));
     /* The wrong interface's calls. */
-    double x[ROD_NX];
+    double x[MODEL_NX];
     fmi3Boolean e, t, r;
     double last;
-    EXPECT_IN(C3_STEP, fmi3Error, "fmi3GetContinuousStates", f->GetContinuousStates(c, x, ROD_NX));
-    EXPECT_IN(C3_STEP, fmi3Error, "fmi3GetNominalsOfContinuousStates", f->GetNominalsOfContinuousStates(c, x, ROD_NX));
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3GetContinuousStates", f->GetContinuousStates(c, x, MODEL_NX));
+    EXPECT_IN(C3_STEP, fmi3Error, "fmi3GetNominalsOfContinuousStates", f->GetNominalsOfContinuousStates(c, x, MODEL_NX));
     EXPECT_IN(C3_EVENT, fmi3Error, "fmi3EnterContinuousTimeMode", f->EnterContinuousTimeMode(c));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3EnterStepMode", f->EnterStepMode(c));
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3DoStep", f->DoStep(c, 0, 0.01, fmi3True, &e, &t, &r, &last));

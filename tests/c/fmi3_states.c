@@ -22,6 +22,9 @@ const char *status3_name(fmi3Status s)
     return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "(not an fmi3Status)";
 }
 
+fmi3ValueReference state3_vr(int i) { return md_var(md_state_index(i))->vr; }
+fmi3ValueReference derivative3_vr(int i) { return md_var(MD_DERIVATIVES[i].index)->vr; }
+
 bool state3_is_cs(State3 s)
 {
     return s >= C3_INSTANTIATED;
@@ -32,7 +35,8 @@ bool state3_event_mode_used(State3 s)
     return s == C3_EVENT || s == C3_STEP_EM || s == C3_EVENT_AGAIN;
 }
 
-/* Co-Simulation with a compliant contact of epsilon 0.05 keeps CVODE's steps few. */
+/* Co-Simulation with a compliant contact of epsilon 0.05 (the profile's knob)
+ * keeps CVODE's steps few. */
 #define CS_EPSILON 0.05
 #define CS_STEP 0.02
 
@@ -43,9 +47,9 @@ bool state3_event_mode_used(State3 s)
 
 static fmi3Status cs_initialize(Inst3 *in)
 {
-    const fmi3ValueReference vr = VR_EPSILON;
-    const double eps = CS_EPSILON;
-    fmi3Status st = f->SetFloat64(in->c, &vr, 1, &eps, 1);
+    const fmi3ValueReference vr = PROFILE_KNOB;
+    const double value = PROFILE_KNOB_VALUE(CS_EPSILON);
+    fmi3Status st = f->SetFloat64(in->c, &vr, 1, &value, 1);
     TRY(f->EnterInitializationMode(in->c, fmi3False, 0, 0, fmi3False, 0));
     in->t = 0;
     return st;
@@ -66,13 +70,13 @@ static fmi3Status cs_exit_initialization(Inst3 *in, bool to_step_mode)
 
 static fmi3Status euler_step_from(Inst3 *in, double h)
 {
-    double x[ROD_NX], dx[ROD_NX];
+    double x[MODEL_NX], dx[MODEL_NX];
     fmi3Boolean enter_event = fmi3False, terminate = fmi3False;
-    fmi3Status st = f->GetContinuousStates(in->c, x, ROD_NX);
-    TRY(f->GetContinuousStateDerivatives(in->c, dx, ROD_NX));
-    for (int i = 0; i < ROD_NX; ++i) x[i] += h * dx[i];
+    fmi3Status st = f->GetContinuousStates(in->c, x, MODEL_NX);
+    TRY(f->GetContinuousStateDerivatives(in->c, dx, MODEL_NX));
+    for (int i = 0; i < MODEL_NX; ++i) x[i] += h * dx[i];
     TRY(f->SetTime(in->c, in->t + h));
-    TRY(f->SetContinuousStates(in->c, x, ROD_NX));
+    TRY(f->SetContinuousStates(in->c, x, MODEL_NX));
     TRY(f->CompletedIntegratorStep(in->c, fmi3True, &enter_event, &terminate));
     if (st == fmi3OK) in->t += h;
     return st;
@@ -92,6 +96,14 @@ static fmi3Status me_event_update_then_continuous(Inst3 *in)
     return st;
 }
 
+/* The first fixed Float64 parameter of the model description set to its start value. */
+static fmi3Status set_fixed_parameter3(Inst3 *in)
+{
+    const MdVariable *p = md_var(md_first(MD_PARAMETER, MD_FIXED));
+    if (!CHECK(p != NULL, "the model description has no fixed Float64 parameter")) return fmi3Fatal;
+    return f->SetFloat64(in->c, &p->vr, 1, &p->start, 1);
+}
+
 bool inst3_reach(Inst3 *in, State3 state, bool logging)
 {
     const bool cs = state3_is_cs(state);
@@ -101,8 +113,6 @@ bool inst3_reach(Inst3 *in, State3 state, bool logging)
     if (!CHECK(in->c != NULL, "fmi3Instantiate for %s failed: %s", STATE3_NAME[state], harness.last_message))
         return false;
     fmi3Status st = fmi3OK;
-    const fmi3ValueReference eps_vr = VR_EPSILON;
-    const double eps = 1e-3;
     switch (state) {
     case M3_INSTANTIATED: case C3_INSTANTIATED: break;
     case M3_INIT: st = me_initialize(in); break;
@@ -120,8 +130,7 @@ bool inst3_reach(Inst3 *in, State3 state, bool logging)
         TRY(f->EnterEventMode(in->c));
         if (state == M3_TERMINATED) TRY(f->Terminate(in->c));
         /* A fixed parameter set after initialization is an error. */
-        if (state == M3_ERROR && st == fmi3OK)
-            st = f->SetFloat64(in->c, &eps_vr, 1, &eps, 1) == fmi3Error ? fmi3OK : fmi3Fatal;
+        if (state == M3_ERROR && st == fmi3OK) st = set_fixed_parameter3(in) == fmi3Error ? fmi3OK : fmi3Fatal;
         break;
     case C3_INIT: st = cs_initialize(in); break;
     case C3_EVENT:

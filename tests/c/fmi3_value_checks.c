@@ -11,26 +11,29 @@ static const Fmi3Api *const f = &api3;
 
 /* ------------------------------------------------------------- values */
 
-/* After fmi3SetFloat64(name = value) was refused: the message names the
- * variable and the range it must be in. */
-static void check_range_message(const char *name, double value, const char *range)
+/* After fmi3SetFloat64 of variable `index` to `value` was refused: the message
+ * names the variable and the range [min, max] it must be in. */
+static void check_range_message(int index, double value, double min, double max)
 {
     Inst3 in;
     if (!inst3_reach(&in, M3_INSTANTIATED, false)) return;
-    fmi3ValueReference vr = 0;
-    for (int k = 1; k <= MD_N_VARIABLES; ++k)
-        if (!strcmp(md_var(k)->name, name)) vr = md_var(k)->vr;
-    const fmi3Status st = f->SetFloat64(in.c, &vr, 1, &value, 1);
-    CHECK(st == fmi3Error, "fmi3SetFloat64(%s = %g): %s, expected fmi3Error", name, value, status3_name(st));
-    char named[64];
-    snprintf(named, sizeof named, "%s = ", name);
+    const MdVariable *v = md_var(index);
+    const fmi3Status st = f->SetFloat64(in.c, &v->vr, 1, &value, 1);
+    CHECK(st == fmi3Error, "fmi3SetFloat64(%s = %g): %s, expected fmi3Error", v->name, value, status3_name(st));
+    char named[64], range[64];
+    snprintf(named, sizeof named, "%s = ", v->name);
+    snprintf(range, sizeof range, "[%g, %g]", min, max);
     CHECK(strstr(harness.last_error, named) && strstr(harness.last_error, range),
-          "fmi3SetFloat64(%s = %g): the message does not name the variable and its range %s: '%s'", name, value,
+          "fmi3SetFloat64(%s = %g): the message does not name the variable and its range %s: '%s'", v->name, value,
           range, harness.last_error);
     in.state = M3_ERROR;
     inst3_works(&in, "a value out of range");
     inst3_free(&in);
 }
+
+/* A value below min (0 for a positive min, the smallest negative for 0) and above max. */
+static double below(double min) { return min > 0 ? 0 : min == 0 ? -1e-300 : 2 * min; }
+static double above(double max) { return max > 0 ? 2 * max : max == 0 ? 1e-300 : 0; }
 
 void test3_bad_values(void)
 {
@@ -42,25 +45,24 @@ void test3_bad_values(void)
             const fmi3ValueReference vr = v->vr;
             EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3SetFloat64", f->SetFloat64(c, &vr, 1, &BAD[k], 1));
         }
+        /* The ranges: a parameter's of the model description (min, max), a state's the profile's bound. */
+        const bool ranged = v->type == MD_REAL && (v->state || (v->has_min && v->has_max));
+        if (!ranged) continue;
+        const double min = v->state ? -PROFILE_STATE_BOUND : v->min, max = v->state ? PROFILE_STATE_BOUND : v->max;
+        check_range_message(index, below(min), min, max);
+        check_range_message(index, above(max), min, max);
+        check_range_message(index, NAN, min, max);
     }
-    /* The ranges of modelDescription.xml (min, max). */
-    check_range_message("epsilon", 0, "[1e-08, 1]");
-    check_range_message("epsilon", 2, "[1e-08, 1]");
-    check_range_message("epsilon", NAN, "[1e-08, 1]");
-    check_range_message("alpha", 0, "[1e-06, 1e+06]");
-    check_range_message("mu", -1e-300, "[0, 1e+06]");
-    check_range_message("delta", -1, "[0, 1e+06]");
-    check_range_message("y", 2e6, "[-1e+06, 1e+06]");
     /* A rejected fmi3SetFloat64 changes nothing (read back in Error, which is Terminated). */
     Inst3 in;
     if (inst3_reach(&in, M3_INIT, false)) {
-        const fmi3ValueReference vrs[2] = { VR_EPSILON, VR_ALPHA };
-        const double before = 2e-3, values[2] = { 0.5, -1 };
+        const fmi3ValueReference vrs[2] = { PROFILE_KNOB, PROFILE_KNOB };
+        const double before = PROFILE_KNOB_VALUE(2e-3), values[2] = { PROFILE_KNOB_VALUE(0.5), NAN };
         double after = 0;
-        CHECK(f->SetFloat64(in.c, vrs, 1, &before, 1) == fmi3OK, "epsilon = %g refused", before);
-        CHECK(f->SetFloat64(in.c, vrs, 2, values, 2) == fmi3Error, "alpha = -1 accepted");
+        CHECK(f->SetFloat64(in.c, vrs, 1, &before, 1) == fmi3OK, "the knob = %g refused", before);
+        CHECK(f->SetFloat64(in.c, vrs, 2, values, 2) == fmi3Error, "the knob = NaN accepted");
         CHECK(f->GetFloat64(in.c, vrs, 1, &after, 1) == fmi3OK && after == before,
-              "a rejected fmi3SetFloat64 changed epsilon from %g to %g", before, after);
+              "a rejected fmi3SetFloat64 changed the knob from %g to %g", before, after);
         inst3_free(&in);
     }
     /* Bad arguments of the mode changes and steps. */
@@ -73,10 +75,11 @@ void test3_bad_values(void)
     EXPECT_IN(M3_INSTANTIATED, fmi3Error, "fmi3EnterInitializationMode",
               f->EnterInitializationMode(c, fmi3False, 0, 1, fmi3True, 0));
     EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetTime", f->SetTime(c, NAN));
-    double x[ROD_NX] = { 0, 1, 0, 0, 1, 0.5 };
-    x[3] = NAN;
-    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, x, ROD_NX));
-    const fmi3ValueReference u = VR_DER_W, k = VR_Y;
+    double x[MODEL_NX];
+    for (int i = 0; i < MODEL_NX; ++i) x[i] = md_var(md_state_index(i))->start;
+    x[MODEL_NX - 1] = NAN;
+    EXPECT_IN(M3_CONTINUOUS, fmi3Error, "fmi3SetContinuousStates", f->SetContinuousStates(c, x, MODEL_NX));
+    const fmi3ValueReference u = derivative3_vr(MODEL_NX - 1), k = state3_vr(0);
     const double nan_seed = NAN;
     double out;
     EXPECT_IN(M3_EVENT, fmi3Error, "fmi3GetDirectionalDerivative",

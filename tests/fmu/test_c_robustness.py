@@ -8,14 +8,15 @@ The driver's conformance table (tests/c/conformance_*.c: every FMI 2.0 call in
 every state of both interfaces, to the letter of FMI 2.0.4) is its own test,
 apart from the robustness checks; valgrind runs both. The FMI 3.0 layer has its
 own driver (tests/c/fmi3_*.c: every fmi3 call in every state to the letter of
-FMI 3.0, derivatives, robustness) and fuzz target (fuzz_fmi3.c), over the same
+FMI 3.0, derivatives, robustness; every model) and fuzz target (fuzz_fmi3.c), over the same
 instrumented libraries, which export both layers; both fuzz targets replay the
 whole corpus. fuzz_bounded (every model; fuzz_bounded3 for FMI 3.0) fuzzes
 whole runs instead: tolerance, start time, step sizes, parameters, states and
 inputs, Model Exchange and Co-Simulation; every call must return with a legal
 status (Discard from a doStep only, the getters answering after it).
 
-Every model gets the FMI 2.0 driver, conformance table and fuzz target:
+Every model gets the FMI 2.0 and 3.0 drivers and conformance tables and the fuzz targets
+(fuzz_fmi3 is PainleveRod's only):
 PainleveRod (fmu_src/models/PainleveRod, the top-level modelDescription.xml) and
 each fmu_src/models/NAME that tests/c/CMakeLists.txt names by add_model_dir_checks
 (programs suffixed _NAME, its FMU built from its own modelDescription.xml's
@@ -244,29 +245,36 @@ def test_fuzzing_finds_nothing(build, tmp_path, target):
     assert re.search(r"INFO: seed corpus: files: %d " % len(list(CORPUS.iterdir())), output), output[-3000:]
 
 
-def test_every_fmi3_call_in_every_state_answers_as_fmi_3_0_requires(build):
+@pytest.mark.parametrize("model", MODELS)
+def test_every_fmi3_call_in_every_state_answers_as_fmi_3_0_requires(build, model):
     # The "Allowed Function Calls" of FMI 3.0 sections 2.3 (common states; an fmi3Error
     # leaves the instance in Terminated), 3.2 (Continuous-Time Mode) and 4.2 (Step Mode),
     # each variable by its getter and setter, and the directional and adjoint derivatives
     # of every (unknown, known) pair of the FMI 3.0 ModelStructure against central
     # differences, under AddressSanitizer + UBSan.
-    code, output = run([build / "fmi3_driver_asan", "--conformance-only"], timeout=300)
-    assert_clean(code, output, "fmi3_driver_asan --conformance-only")
+    program = f"fmi3_driver_asan{MODELS[model]}"
+    code, output = run([build / program, "--conformance-only"], timeout=300)
+    assert_clean(code, output, f"{program} --conformance-only")
     assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
 
 
-def test_fmi3_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build):
+@pytest.mark.parametrize("model", MODELS)
+def test_fmi3_driver_finds_nothing_under_address_and_undefined_behaviour_sanitizers(build, model):
     # NULLs, nValues != nValueReferences, every type by every value reference, ranges named
-    # in messages, early return and Event Mode (a step with an event pending is refused),
-    # serialized states cut short or changed, what the FMU does not have.
-    code, output = run([build / "fmi3_driver_asan", "--no-conformance"], timeout=300)
-    assert_clean(code, output, "fmi3_driver_asan --no-conformance")
+    # in messages, early return and Event Mode (a step with an event pending is refused; the
+    # profile's mode switches counted where it has them), serialized states cut short or
+    # changed, what the FMU does not have.
+    program = f"fmi3_driver_asan{MODELS[model]}"
+    code, output = run([build / program, "--no-conformance"], timeout=300)
+    assert_clean(code, output, f"{program} --no-conformance")
     assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
 
 
-def test_fmi3_driver_finds_nothing_under_valgrind_memcheck(build):
-    code, output = run([*VALGRIND, build / "fmi3_driver"], timeout=300)
-    assert_clean(code, output, "valgrind fmi3_driver")
+@pytest.mark.parametrize("model", MODELS)
+def test_fmi3_driver_finds_nothing_under_valgrind_memcheck(build, model):
+    program = f"fmi3_driver{MODELS[model]}"
+    code, output = run([*VALGRIND, build / program], timeout=600)
+    assert_clean(code, output, f"valgrind {program}")
     assert "ERROR SUMMARY: 0 errors" in output, output[-3000:]
     assert re.search(r"fmi3_driver: \d+ checks, 0 failed", output), output[-3000:]
 

@@ -1,6 +1,6 @@
-/* What the FMI 2.0 driver and fuzz target need to know of PainleveRod beyond
+/* What the C drivers (FMI 2.0 and 3.0) and fuzz targets need to know of PainleveRod beyond
  * its modelDescription.xml (which gives them the variables, their ranges and
- * the ModelStructure): the CMake function add_model_checks includes it as
+ * the ModelStructure): the CMake functions add_model_checks and add_fmi3_checks include it as
  * DRIVER_PROFILE. */
 #ifndef DRIVER_PROFILE_H
 #define DRIVER_PROFILE_H
@@ -30,5 +30,11 @@
 /* fuzz_bounded's run: at most this span (twice the default experiment), in steps of it down to 1e-8 of it. */
 #define PROFILE_BOUNDED_SPAN 0.2
 #define PROFILE_FUZZ_LONGEST_STEP INFINITY
+
+/* Mode-switch events (the FMI 3.0 driver's Co-Simulation checks): the run of
+ * the start values over PROFILE_RUN_SPAN is an IWC (contact, one stick,
+ * lift-off), which the event record's switches and sticks count (rod_record.h). */
+#define PROFILE_MODE_SWITCHES 1
+#define PROFILE_RUN_SPAN 0.1 /* the default experiment */
 
 #endif

@@ -1,4 +1,4 @@
-/* What the FMI 2.0 driver and fuzz target need to know of PainleveRodSI beyond
+/* What the C drivers and fuzz targets need to know of PainleveRodSI beyond
  * its modelDescription.xml (see PainleveRod.h). */
 #ifndef DRIVER_PROFILE_H
 #define DRIVER_PROFILE_H
@@ -36,5 +36,11 @@ static inline double si_stiffness(double epsilon)
  * chatters between stick and slip at 2e6 events a second. */
 #define PROFILE_FUZZ_SPAN 0.2
 #define PROFILE_FUZZ_LONGEST_STEP 0.2
+
+/* Mode-switch events (the FMI 3.0 driver's Co-Simulation checks): the run of
+ * the start values over PROFILE_RUN_SPAN is an IWC (contact, one stick,
+ * lift-off), which the event record's switches and sticks count (rod_record.h). */
+#define PROFILE_MODE_SWITCHES 1
+#define PROFILE_RUN_SPAN 0.05 /* s: the default experiment */
 
 #endif

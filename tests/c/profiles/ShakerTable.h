@@ -1,4 +1,4 @@
-/* What the FMI 2.0 driver and fuzz target need to know of ShakerTable beyond
+/* What the C drivers and fuzz targets need to know of ShakerTable beyond
  * its modelDescription.xml (see PainleveRod.h). */
 #ifndef DRIVER_PROFILE_H
 #define DRIVER_PROFILE_H
@@ -27,5 +27,10 @@ static inline double table_stiffness(double epsilon)
  * step it takes beyond it, in seconds: the drive's frequency goes up to 1 MHz. */
 #define PROFILE_FUZZ_SPAN 0.2
 #define PROFILE_FUZZ_LONGEST_STEP 0.2
+
+/* No mode switches: the FMI 3.0 driver's Co-Simulation checks run PROFILE_RUN_SPAN
+ * without the checks of an IWC's events. */
+#define PROFILE_MODE_SWITCHES 0
+#define PROFILE_RUN_SPAN 0.1
 
 #endif
