@@ -42,6 +42,22 @@ static Contact contact_of(const ArmBody *b, const ContactLaw *law)
     return (Contact){ .body = &arm_body, .params = b, .law = *law };
 }
 
+/* A trial state x of an embedded integrator, scaled, with the arm and law it is scaled by
+ * (the model itself is not changed). */
+typedef struct {
+    ArmBody body;
+    ContactLaw law;
+    double xs[ARM_NX];
+} Trial;
+
+/* The core on trial state x: valid while `t` lives. */
+static Contact contact_at(const Model *m, const double x[ARM_NX], Trial *t)
+{
+    scaled(m, &t->body, &t->law);
+    scale_state(m, x, t->xs);
+    return contact_of(&t->body, &t->law);
+}
+
 /* der(theta) = omega; der(omega) = (g/L) times the scaled omega'. */
 static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX], const double xs[ARM_NX],
                         double dx[ARM_NX])
@@ -143,25 +159,17 @@ void model_set_time(Model *m, double time)
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     (void)time;
-    ArmBody b;
-    ContactLaw law;
-    double xs[ARM_NX];
-    scaled(m, &b, &law);
-    scale_state(m, x, xs);
-    const Contact c = contact_of(&b, &law);
-    derivatives(m, &c, x, xs, dx);
+    Trial t;
+    const Contact c = contact_at(m, x, &t);
+    derivatives(m, &c, x, t.xs, dx);
 }
 
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
     (void)time;
-    ArmBody b;
-    ContactLaw law;
-    double xs[ARM_NX];
-    scaled(m, &b, &law);
-    scale_state(m, x, xs);
-    const Contact c = contact_of(&b, &law);
-    contact_event_indicators(&c, m->run.mode, xs, z);
+    Trial t;
+    const Contact c = contact_at(m, x, &t);
+    contact_event_indicators(&c, m->run.mode, t.xs, z);
 }
 
 /* The core's central differences on the scaled arm (the arm has no analytic partials), in
@@ -169,13 +177,10 @@ void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], 
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
 {
     (void)time;
-    ArmBody b;
-    ContactLaw law;
-    double xs[ARM_NX], Js[ARM_NX * ARM_NX];
-    scaled(m, &b, &law);
-    scale_state(m, x, xs);
-    const Contact c = contact_of(&b, &law);
-    contact_jacobian_differences(&c, m->run.mode, xs, Js);
+    Trial t;
+    double Js[ARM_NX * ARM_NX];
+    const Contact c = contact_at(m, x, &t);
+    contact_jacobian_differences(&c, m->run.mode, t.xs, Js);
     const double rate = m->g / (m->l1 + m->l2), T = time_unit(m);
     for (int i = 0; i < ARM_NX; ++i)
         for (int j = 0; j < ARM_NX; ++j)
