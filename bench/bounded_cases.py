@@ -26,14 +26,15 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 # (model, FMI version) -> the built FMU.
 FMUS = {("PainleveRod", 2): "build/PainleveRod.fmu", ("PainleveRod", 3): "build/fmi3/PainleveRod.fmu",
-        ("PainleveRodSI", 2): "build/PainleveRodSI.fmu", ("ShakerTable", 2): "build/ShakerTable.fmu"}
+        ("PainleveRodSI", 2): "build/PainleveRodSI.fmu", ("ShakerTable", 2): "build/ShakerTable.fmu",
+        ("TwoLinkArm", 2): "build/TwoLinkArm.fmu", ("TwoLinkArm", 3): "build/fmi3/TwoLinkArm.fmu"}
 # Every run: (model, FMI version, interface, ME solver).
 COMBOS = [(model, fmi, *run) for (model, fmi) in FMUS
           for run in (("CS", None), ("ME", "CVode"), ("ME", "Euler"))]
 
 # The scale of a state's or input's excursion from its start (model units).
 SCALES = {"x": 1, "v": 2, "y": 0.1, "w": 1, "theta": 3.2, "phi": 3, "position": 1e-3, "velocity": 0.1,
-          "y_floor": 0.05, "w_floor": 1, "v_floor": 1, "F_x": 10, "F_y": 10, "tau": 1, "F_N": 100, "F_T": 100}
+          "theta1": 3.2, "theta2": 3.2, "omega1": 3, "omega2": 3, "y_floor": 0.05, "w_floor": 1, "v_floor": 1, "F_x": 10, "F_y": 10, "tau": 1, "F_N": 100, "F_T": 100}
 # The documented range is 1e-12 to 1e-3 (docs/bounded_calls.md): its ends, just outside them, and far outside.
 TOLERANCE_EDGES = [1e-14, 1e-13, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-3, 2e-3, 1e-2, 0.1, 0.5, 1.0, 10.0, 48.125]
 START_EDGES = [48.125, 1e4, -1e4, 1e6]

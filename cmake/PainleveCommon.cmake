@@ -99,7 +99,7 @@ endfunction()
 # MODEL_SOURCES, MODEL_INCLUDE_DIRS and MODEL_HEADERS of the model in MODEL_DIR, a
 # folder of FMU_SRC_DIR/models. NAMES are its <SourceFiles> (flat, as in the source
 # FMU's sources/): each the model's own file if its folder has one, else the one of
-# the shared folders below the models (FMU_SRC_DIR/rod, then FMU_SRC_DIR/fmi) that
+# the shared folders below the models (FMU_SRC_DIR/rod, FMU_SRC_DIR/contact, then FMU_SRC_DIR/fmi) that
 # has it. The include path is the model's folder, then each shared folder its sources
 # come from; the headers are those folders' (all FMI versions': a build drops the other's).
 function(painleve_model_sources MODEL_DIR FMU_SRC_DIR NAMES)
@@ -107,14 +107,14 @@ function(painleve_model_sources MODEL_DIR FMU_SRC_DIR NAMES)
   set(sources "")
   foreach(name IN LISTS NAMES)
     set(found "")
-    foreach(dir ${MODEL_DIR} ${FMU_SRC_DIR}/rod ${FMU_SRC_DIR}/fmi)
+    foreach(dir ${MODEL_DIR} ${FMU_SRC_DIR}/rod ${FMU_SRC_DIR}/contact ${FMU_SRC_DIR}/fmi)
       if(NOT found AND EXISTS ${dir}/${name})
         set(found ${dir})
       endif()
     endforeach()
     if(NOT found)
       message(FATAL_ERROR "<SourceFiles> of ${MODEL_DIR} names ${name}: in neither the model's folder, "
-                          "${FMU_SRC_DIR}/rod nor ${FMU_SRC_DIR}/fmi")
+                          "${FMU_SRC_DIR}/rod, ${FMU_SRC_DIR}/contact nor ${FMU_SRC_DIR}/fmi")
     endif()
     list(APPEND sources ${found}/${name})
     list(APPEND dirs ${found})

@@ -33,11 +33,21 @@ SI_INDICATORS = [
     ("indicator_aux", "a + q_- F_N/(m g) (backward fold) while sticking; (w - w_floor)/sqrt(g l) in flight",
      "y w theta phi y_floor w_floor F_x F_y tau"),
 ]
+# TwoLinkArm's are the contact core's over the arm (fmu_src/models/TwoLinkArm): the tip's gap and velocity are
+# functions of the angles and rates, so each indicator depends on them.
+ARM_STATES = "theta1 theta2 omega1 omega2"
+ARM_INDICATORS = [
+    ("indicator_y", "y/L: the tip's gap, the contact surface", "theta1 theta2"),
+    ("indicator_g", "the compliant force's zero in the scaled units: -y/(eps L) - delta w/sqrt(g L)", ARM_STATES),
+    ("indicator_slip", "v/sqrt(g L) while slipping; a + q_+ F_N/(M g) (forward fold) while sticking", ARM_STATES),
+    ("indicator_aux", "a + q_- F_N/(M g) (backward fold) while sticking; w/sqrt(g L) in flight", ARM_STATES),
+]
 # Each model's event indicators and independent variable (its unit is one of the model's units).
 MODELS = {
     "PainleveRod": (INDICATORS, "the paper's dimensionless time", "dimensionless"),
     "PainleveRodSI": (SI_INDICATORS, "time", "s"),
     "ShakerTable": ([], "time", "s"),
+    "TwoLinkArm": (ARM_INDICATORS, "time", "s"),
 }
 
 
@@ -48,6 +58,7 @@ def convert(md2):
     me2, cs2 = md2.find("ModelExchange"), md2.find("CoSimulation")
     indicators, time_description, time_unit = MODELS[md2.get("modelName")]
     assert len(indicators) == int(md2.get("numberOfEventIndicators", "0")), "one FMI 3.0 variable per indicator"
+    derivatives = me2.get("providesDirectionalDerivative", "false")   # the FMI 2.0 flag: both kinds or neither
 
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "3.0", "modelName": md2.get("modelName"), "instantiationToken": md2.get("guid"),
@@ -55,7 +66,7 @@ def convert(md2):
         "generationTool": md2.get("generationTool"), "variableNamingConvention": "structured"})
     common = {"modelIdentifier": me2.get("modelIdentifier"), "needsExecutionTool": "false",
               "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "true",
-              "canSerializeFMUState": "true", "providesDirectionalDerivatives": "true",
+              "canSerializeFMUState": "true", "providesDirectionalDerivatives": derivatives,
               "providesAdjointDerivatives": "true", "providesPerElementDependencies": "false"}
     ET.SubElement(root, "ModelExchange", {**common, "needsCompletedIntegratorStep": "false"})
     if cs2 is not None:

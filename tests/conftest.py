@@ -60,6 +60,18 @@ def si_fmu_path():
 
 
 @pytest.fixture(scope="session")
+def arm_path():
+    """The two-link arm on the contact core (fmu_src/models/TwoLinkArm)."""
+    return built_fmu("TwoLinkArm.fmu")
+
+
+@pytest.fixture(scope="session")
+def arm3_path():
+    """The same arm as an FMI 3.0 FMU."""
+    return built_fmu("fmi3", "TwoLinkArm.fmu")
+
+
+@pytest.fixture(scope="session")
 def table_path():
     """The shaker table (fmu_src/models/ShakerTable)."""
     return built_fmu("ShakerTable.fmu")

@@ -134,7 +134,8 @@ bool model_event_update(Model *m, double time, ModelEvent *e);
 
 /* ------------------------------------------------ partial derivatives */
 
-/* d unknown / d known of the current mode's smooth branch, analytic. Unknowns
+/* d unknown / d known of the current mode's smooth branch, analytic. A model whose config.h
+ * defines MODEL_NO_PARTIALS (a message) has none: every call returns it. Unknowns
  * are Reals (a state, input or parameter is its own identity, a discrete output
  * is frozen between events), knowns states, inputs and parameters. NULL on
  * success, else why the pair has none. (model_common.c; it asks the model for

@@ -126,6 +126,12 @@ const char *model_implausible(const Model *m)
 
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
+#ifdef MODEL_NO_PARTIALS
+    /* A model without partial derivatives (its description: providesDirectionalDerivative="false")
+     * answers none, not even a known's own. */
+    (void)m, (void)unknown, (void)known, (void)value;
+    return MODEL_NO_PARTIALS;
+#endif
     const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
     if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
     if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";

@@ -1,5 +1,5 @@
 /* What a model's event update did (model.h), in a header of its own so that a
- * model's shared parts (rod_record.h), which config.h includes before model.h
+ * model's shared parts (contact_record.h), which config.h includes before model.h
  * is complete, can fill it in. */
 #ifndef MODEL_EVENT_H
 #define MODEL_EVENT_H

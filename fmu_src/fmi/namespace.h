@@ -19,34 +19,52 @@
 #define NAMESPACE_PASTE(a, b) NAMESPACE_PASTE_(a, b)
 #define NAMESPACED(name) NAMESPACE_PASTE(NAMESPACE_PREFIX, name)
 
-/* rod.c, rod_partials.c: the physics */
+/* contact.c, contact_events.c, contact_record.c: the contact core over a body */
+#define contact_body NAMESPACED(contact_body)
+#define contact_coeffs NAMESPACED(contact_coeffs)
+#define contact_compliance NAMESPACED(contact_compliance)
+#define contact_decide_mode NAMESPACED(contact_decide_mode)
+#define contact_derivatives NAMESPACED(contact_derivatives)
+#define contact_energy NAMESPACED(contact_energy)
+#define contact_event_indicators NAMESPACED(contact_event_indicators)
+#define contact_event_update NAMESPACED(contact_event_update)
+#define contact_friction_force NAMESPACED(contact_friction_force)
+#define contact_indicator_name NAMESPACED(contact_indicator_name)
+#define contact_indicator_noise NAMESPACED(contact_indicator_noise)
+#define contact_initial_mode NAMESPACED(contact_initial_mode)
+#define contact_jacobian_differences NAMESPACED(contact_jacobian_differences)
+#define contact_move_off_surfaces NAMESPACED(contact_move_off_surfaces)
+#define contact_normal_force NAMESPACED(contact_normal_force)
+#define contact_record_describe_start NAMESPACED(contact_record_describe_start)
+#define contact_record_event NAMESPACED(contact_record_event)
+#define contact_record_implausible NAMESPACED(contact_record_implausible)
+#define contact_record_new NAMESPACED(contact_record_new)
+#define contact_record_start NAMESPACED(contact_record_start)
+#define contact_spring_energy NAMESPACED(contact_spring_energy)
+
+/* rod.c, rod_partials.c: the rod, the core's first body */
+#define rod_coefficient_outputs NAMESPACED(rod_coefficient_outputs)
 #define rod_coeffs NAMESPACED(rod_coeffs)
-#define rod_decide_mode NAMESPACED(rod_decide_mode)
+#define rod_contact NAMESPACED(rod_contact)
 #define rod_derivatives NAMESPACED(rod_derivatives)
 #define rod_energy NAMESPACED(rod_energy)
 #define rod_event_indicators NAMESPACED(rod_event_indicators)
-#define rod_event_update NAMESPACED(rod_event_update)
 #define rod_force_bracket NAMESPACED(rod_force_bracket)
 #define rod_compliance NAMESPACED(rod_compliance)
 #define rod_spring_energy NAMESPACED(rod_spring_energy)
 #define rod_friction_force NAMESPACED(rod_friction_force)
-#define rod_indicator_name NAMESPACED(rod_indicator_name)
 #define rod_jacobian NAMESPACED(rod_jacobian)
 #define rod_move_off_surfaces NAMESPACED(rod_move_off_surfaces)
 #define rod_nominals NAMESPACED(rod_nominals)
 #define rod_normal_force NAMESPACED(rod_normal_force)
 #define rod_partials NAMESPACED(rod_partials)
 
+/* fmu_src/models/TwoLinkArm/arm_body.c: the arm, the core's second body */
+#define arm_body NAMESPACED(arm_body)
+#define arm_mass_matrix NAMESPACED(arm_mass_matrix)
+
 /* fmu_src/models/PainleveRodSI/rod_si_partials.c */
 #define si_partial NAMESPACED(si_partial)
-
-/* rod_record.c: the event iteration of a rod model */
-#define rod_initial_mode NAMESPACED(rod_initial_mode)
-#define rod_record_describe_start NAMESPACED(rod_record_describe_start)
-#define rod_record_event NAMESPACED(rod_record_event)
-#define rod_record_implausible NAMESPACED(rod_record_implausible)
-#define rod_record_new NAMESPACED(rod_record_new)
-#define rod_record_start NAMESPACED(rod_record_start)
 
 /* model.c: the model interface */
 #define model_assign NAMESPACED(model_assign)

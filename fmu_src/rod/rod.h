@@ -1,23 +1,32 @@
 /* The compliant Painleve rod of Hogan & Kristiansen: physics only, no FMI.
  *
- * States, derivatives, event indicators and the mode logic of docs/model.md §1-2.
- * Every function is pure apart from rod_event_update, which may move the
- * state off a switching surface; nothing here keeps global state. */
+ * The rod is the contact core's first body (contact.h, docs/general_body.md): its
+ * generalized coordinates are the contact end's (x, y) and theta, so v and w are
+ * states. This header keeps the rod's closed forms (eq coeffs, eq Sw), its analytic
+ * Jacobian, and the rod-named entry points that PainleveRod, PainleveRodSI and
+ * rod_partials.c call: each runs the core on the rod body. Every function is pure
+ * apart from rod_event_update, which may move the state off a switching surface;
+ * nothing here keeps global state. */
 #ifndef ROD_H
 #define ROD_H
 
 #include <stdbool.h>
 
-#include "namespace.h" /* every source includes this header: their names, prefixed */
+#include "contact.h"
 
 /* Continuous states, in the order of modelDescription.xml. */
 enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
 
-/* Event indicators. Slots 2 and 3 change meaning with the mode (see rod.c). */
-enum { ROD_Z_Y, ROD_Z_FORCE, ROD_Z_SLIP, ROD_Z_AUX, ROD_NZ };
+/* Event indicators: the core's (contact.c). */
+enum { ROD_Z_Y = CONTACT_Z_Y, ROD_Z_FORCE = CONTACT_Z_FORCE, ROD_Z_SLIP = CONTACT_Z_SLIP, ROD_Z_AUX = CONTACT_Z_AUX,
+       ROD_NZ = CONTACT_NZ };
 
-/* Algebraic outputs. */
-enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY, ROD_NOUT };
+/* Algebraic outputs: the forces, the energy, and the coefficients of eq Painleve and
+ * eq Sw at the current state (RodCoeffs's a, b, p_+-, q_+-, S_w), which tell a user where
+ * the paradox region p_plus < 0 lies. */
+enum { ROD_OUT_F_N, ROD_OUT_F_T, ROD_OUT_ENERGY,
+       ROD_OUT_A, ROD_OUT_B, ROD_OUT_P_PLUS, ROD_OUT_P_MINUS, ROD_OUT_Q_PLUS, ROD_OUT_Q_MINUS, ROD_OUT_S_W,
+       ROD_NOUT };
 
 typedef struct {
     double alpha;   /* m l^2 / I, > 0 */
@@ -32,10 +41,10 @@ typedef struct {
     double f_x, f_y, tau;
 } RodParams;
 
-typedef struct {
-    bool contact; /* compliant force active */
-    int slip;     /* +1 slip forward, 0 stick, -1 slip backward */
-} RodMode;
+typedef ContactMode RodMode;
+
+/* The contact core on the rod with parameters p (p must outlive it). */
+Contact rod_contact(const RodParams *p);
 
 /* Coefficients of eq coeffs and eq Sw at one (theta, phi). Sticking follows
  * w' = b + A_w a + S_w F_N, phi' = A_phi a + S_phi F_N (the exact Filippov
@@ -49,17 +58,12 @@ typedef struct {
 
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
 
-/* The compliance law h(yh, w) of eq hNon in the scaled variables yh = y/eps and w,
- * with the scaled penetration d = max(-yh, 0):
- *   h = -yh + kappa d^2 - delta w (1 + beta d),   F_N = h/eps in contact.
- * Its linearization at the origin is exactly -yh - delta w (eq hLin): kappa = beta = 0
- * is the paper's linear law. With kappa, beta >= 0, h decreases in yh and (delta > 0)
- * in w wherever h > 0 and y <= 0 (the paper's d_y f < 0, d_w f < 0). */
-typedef struct {
-    double h;    /* h(yh, w) */
-    double h_yh; /* dh/dyh (the contact side at d = 0) */
-    double h_w;  /* dh/dw */
-} RodCompliance;
+/* out[ROD_OUT_A .. ROD_OUT_S_W]: the core's coefficients (contact_coeffs) at the state x
+ * (any mode: they are the body's, not the mode's); eq coeffs and eq Sw to round-off. */
+void rod_coefficient_outputs(const RodParams *p, const double x[ROD_NX], double out[ROD_NOUT]);
+
+/* The compliance law of contact.h (contact_compliance) with the rod's parameters. */
+typedef Compliance RodCompliance;
 
 RodCompliance rod_compliance(const RodParams *p, double y, double w);
 
@@ -90,24 +94,13 @@ void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX],
 /* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
 void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
 
-/* The mode the rules of docs/model.md §2 give at state x, coming from mode m.
- * May set v to exactly 0 (entering or re-deciding stick); says so in *x_changed. */
-RodMode rod_decide_mode(const RodParams *p, RodMode m, double x[ROD_NX], bool *x_changed);
-
-/* Moves x off every switching surface on which an indicator of mode m is 0
- * to within `margin` times its rounding error, towards the side mode m lives
+/* contact_move_off_surfaces on the rod: moves x off every switching surface on which an
+ * indicator of mode m is 0 to within `margin` times its rounding error, towards the side mode m lives
  * on and past that, so that no importer restarts integration on a root.
  * margin >= 1: 1 at a first event; larger where the importer's solver came
  * straight back to the surface (its error exceeded the move). Sets *moved if
  * x changed; returns false if a surface could not be left by a step below the
  * state's nominal. */
 bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved);
-
-typedef enum { ROD_SETTLED, ROD_PING_PONG, ROD_STUCK_ON_SURFACE } RodEventResult;
-
-/* Mode decision iterated to a fixpoint, then rod_move_off_surfaces with `margin`. */
-RodEventResult rod_event_update(const RodParams *p, RodMode *m, double x[ROD_NX], double margin, bool *x_changed);
-
-const char *rod_indicator_name(const RodMode m, int i);
 
 #endif

@@ -202,6 +202,37 @@ static void energy_partials(const RodParams *p, RodMode m, const double x[ROD_NX
     d_p[ROD_P_KAPPA] = m.contact ? dp * dp * dp / 3 : 0;
 }
 
+/* The coefficients (rod_coefficient_outputs), mode-independent: with sg = +1 (plus), -1 (minus),
+ *   a = -phi^2 cs + f_x - al sn tau,  b = -1 + phi^2 sn + f_y - al cs tau,
+ *   q_sg = al sn cs - sg mu k,  p_sg = 1 + al cs^2 - sg mu al sn cs,  S_w = (1 + al)/k. */
+static void coefficient_partials(const RodParams *p, const double x[ROD_NX], RodPartials *d)
+{
+    const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha, mu = p->mu, tau = p->tau;
+    const double sn = sin(th), cs = cos(th), k = 1 + al * sn * sn, c2s2 = cs * cs - sn * sn;
+    double(*dx)[ROD_NX] = d->out_x, (*dp)[ROD_NP] = d->out_p, (*dl)[ROD_NL] = d->out_l;
+    dx[ROD_OUT_A][ROD_THETA] = phi * phi * sn - al * cs * tau;
+    dx[ROD_OUT_A][ROD_PHI] = -2 * phi * cs;
+    dp[ROD_OUT_A][ROD_P_ALPHA] = -sn * tau;
+    dl[ROD_OUT_A][ROD_L_FX] = 1;
+    dl[ROD_OUT_A][ROD_L_TAU] = -al * sn;
+    dx[ROD_OUT_B][ROD_THETA] = phi * phi * cs + al * sn * tau;
+    dx[ROD_OUT_B][ROD_PHI] = 2 * phi * sn;
+    dp[ROD_OUT_B][ROD_P_ALPHA] = -cs * tau;
+    dl[ROD_OUT_B][ROD_L_FY] = 1;
+    dl[ROD_OUT_B][ROD_L_TAU] = -al * cs;
+    for (int sg = -1; sg <= 1; sg += 2) {
+        const int q = sg > 0 ? ROD_OUT_Q_PLUS : ROD_OUT_Q_MINUS, pp = sg > 0 ? ROD_OUT_P_PLUS : ROD_OUT_P_MINUS;
+        dx[q][ROD_THETA] = al * c2s2 - sg * mu * 2 * al * sn * cs;
+        dp[q][ROD_P_ALPHA] = sn * cs - sg * mu * sn * sn;
+        dp[q][ROD_P_MU] = -sg * k;
+        dx[pp][ROD_THETA] = -2 * al * sn * cs - sg * mu * al * c2s2;
+        dp[pp][ROD_P_ALPHA] = cs * cs - sg * mu * sn * cs;
+        dp[pp][ROD_P_MU] = -sg * al * sn * cs;
+    }
+    dx[ROD_OUT_S_W][ROD_THETA] = -(1 + al) * 2 * al * sn * cs / (k * k);
+    dp[ROD_OUT_S_W][ROD_P_ALPHA] = cs * cs / (k * k);
+}
+
 void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d)
 {
     memset(d, 0, sizeof *d);   /* every pair not written below is structurally 0 */
@@ -211,4 +242,5 @@ void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPart
     normal_force_partials(p, m, x, d->out_x[ROD_OUT_F_N], d->out_p[ROD_OUT_F_N]);
     friction_force_partials(p, m, x, d->out_x[ROD_OUT_F_T], d->out_p[ROD_OUT_F_T], d->out_l[ROD_OUT_F_T]);
     energy_partials(p, m, x, d->out_x[ROD_OUT_ENERGY], d->out_p[ROD_OUT_ENERGY]);
+    coefficient_partials(p, x, d);
 }

@@ -1,37 +1,13 @@
-/* The event iteration of a model built on rod.c, shared by every such model
- * (fmu_src/models/PainleveRod, fmu_src/models/PainleveRodSI): the mode, the record of its switches,
- * the indicators where integration last restarted, and the Zeno guard. The
- * models differ in units and inputs, not in when and how the rod switches. */
+/* The event iteration of a rod model (PainleveRod, PainleveRodSI): the contact core's
+ * record (contact_record.h) on the rod body, under the rod's names, and the rod's
+ * state variables for a model's config.h list. */
 #ifndef ROD_RECORD_H
 #define ROD_RECORD_H
 
-#include <stdbool.h>
-#include <stddef.h>
-
-#include "model_event.h"
+#include "contact_record.h"
 #include "rod.h"
 
-/* A run of this many events at one instant (no progress in time beyond
- * round-off) is a Zeno run, not a fast one: a physical IWC has at most four
- * switches at one instant, and a fast rod's events advance time. */
-#define ROD_MAX_EVENTS_AT_ONE_INSTANT 100
-
-/* Returns to a surface in a row (events that switched nothing) after which the
- * move off it stops growing: the first trial move is then 2^40 1e-15 = 1e-3 of
- * the state's nominal, which leaves room below the nominal to double in. */
-#define ROD_MAX_RETURNS 40
-
-typedef struct {
-    RodMode mode;
-    double t_switch, t_stick_begin, t_stick_end; /* times of the last switch, stick start, stick end */
-    double t_contact_begin, t_contact_end;       /* times the last contact began and ended */
-    int switches, sticks;                        /* mode switches and sticks since initialization */
-    double z_at_restart[ROD_NZ];                 /* indicators where integration last (re)started */
-    bool initial_event;                          /* the event iteration right after initialization */
-    double instant;                              /* time of the current run of events at one instant */
-    int events_at_instant;
-    int returns;                                 /* events in a row that switched nothing */
-} RodRecord;
+typedef ContactRecord RodRecord;
 
 /* A rod model's continuous states (its Model's x, within +-BOUND) and their
  * derivatives (dx), for its config.h list, in the order of rod.h. */
@@ -49,52 +25,38 @@ typedef struct {
     VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
     VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)
 
-/* The record's variables and internals for a model's config.h lists (the
- * Model's RodRecord field is `run`): the times of the last switches (Reals),
- * the mode and counts (Integers, Boolean), what an FMU state carries beyond. */
-#define ROD_RECORD_TIMES(VARIABLE)                                                                 \
-    VARIABLE(T_SWITCH, "t_switch", REAL, DISCRETE, run.t_switch, 0, 0)                             \
-    VARIABLE(T_STICK_BEGIN, "t_stick_begin", REAL, DISCRETE, run.t_stick_begin, 0, 0)              \
-    VARIABLE(T_STICK_END, "t_stick_end", REAL, DISCRETE, run.t_stick_end, 0, 0)                    \
-    VARIABLE(T_CONTACT_BEGIN, "t_contact_begin", REAL, DISCRETE, run.t_contact_begin, 0, 0)        \
-    VARIABLE(T_CONTACT_END, "t_contact_end", REAL, DISCRETE, run.t_contact_end, 0, 0)
-#define ROD_RECORD_MODES(VARIABLE)                                                                 \
-    VARIABLE(MODE, "mode", INTEGER, DISCRETE, run.mode.slip, 0, 0)                                 \
-    VARIABLE(SWITCHES, "switches", INTEGER, DISCRETE, run.switches, 0, 0)                          \
-    VARIABLE(STICKS, "sticks", INTEGER, DISCRETE, run.sticks, 0, 0)                                \
-    VARIABLE(CONTACT, "contact", BOOLEAN, DISCRETE, run.mode.contact, 0, 0)
-#define ROD_RECORD_INTERNALS(INTERNAL)                            \
-    INTERNAL("z_at_restart0", run.z_at_restart[0], REAL)          \
-    INTERNAL("z_at_restart1", run.z_at_restart[1], REAL)          \
-    INTERNAL("z_at_restart2", run.z_at_restart[2], REAL)          \
-    INTERNAL("z_at_restart3", run.z_at_restart[3], REAL)          \
-    INTERNAL("initial_event", run.initial_event, BOOLEAN)         \
-    INTERNAL("instant", run.instant, REAL)                        \
-    INTERNAL("events_at_instant", run.events_at_instant, INTEGER) \
-    INTERNAL("returns", run.returns, INTEGER)
+/* The record's and the coefficients' variables (contact_record.h). */
+#define ROD_COEFFICIENT_VARIABLES CONTACT_COEFFICIENT_VARIABLES
+#define ROD_RECORD_TIMES CONTACT_RECORD_TIMES
+#define ROD_RECORD_MODES CONTACT_RECORD_MODES
+#define ROD_RECORD_INTERNALS CONTACT_RECORD_INTERNALS
 
-/* Before initialization: the default mode, no record. */
-RodRecord rod_record_new(void);
+static inline RodRecord rod_record_new(void) { return contact_record_new(); }
 
-/* The mode decided from the state alone (nothing is remembered before the start). */
-RodMode rod_initial_mode(const RodParams *p, double x[ROD_NX]);
+static inline RodMode rod_initial_mode(const RodParams *p, double x[ROD_NX])
+{
+    const Contact c = rod_contact(p);
+    return contact_initial_mode(&c, x);
+}
 
-/* Initialization ends at `time`: the initial mode, an empty record. */
-void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double time);
+static inline void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double time)
+{
+    const Contact c = rod_contact(p);
+    contact_record_start(r, &c, x, time);
+}
 
-/* The initial mode, for the event log. */
-void rod_record_describe_start(const RodRecord *r, char *text, size_t size);
+static inline void rod_record_describe_start(const RodRecord *r, char *text, size_t size)
+{
+    contact_record_describe_start(r, text, size);
+}
 
-/* The event update at `time` (rod_event_update), recorded; z holds the indicators
- * at the event. With `floor_jumped` (the floor's speed changed by an input, not
- * at a located v = 0) the rod slips the way its new relative velocity points,
- * as at the start, and the rules go on from there. False, with the reason in
- * e->text, if the modes do not settle or too many events fall on one instant. */
-bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      bool floor_jumped, ModelEvent *e);
+static inline bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ],
+                                    double time, bool floor_jumped, ModelEvent *e)
+{
+    const Contact c = rod_contact(p);
+    return contact_record_event(r, &c, x, z, time, floor_jumped, e);
+}
 
-/* NULL if r (restored from bytes) is a record this model can have, else the
- * name of the first variable that is not. */
-const char *rod_record_implausible(const RodRecord *r);
+static inline const char *rod_record_implausible(const RodRecord *r) { return contact_record_implausible(r); }
 
 #endif

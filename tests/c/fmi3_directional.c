@@ -223,9 +223,16 @@ void test3_derivatives(void)
     for (size_t s = 0; s < sizeof STATES / sizeof STATES[0]; ++s) {
         const State3 state = STATES[s];
         const MdMode mode = mode_of(state);
-        check_defined_pairs(state);
         int unknowns[MAX_VARS], knowns[MAX_VARS], nu, nk;
         md_mode_sets(mode, MAX_VARS, unknowns, &nu, knowns, &nk);
+        /* A model that provides none (providesDirectionalDerivatives="false"): even a defined pair is an
+         * error, directional and adjoint. */
+        if (!MD_PROVIDES_DIRECTIONAL_DERIVATIVE) {
+            for (int adjoint = 0; adjoint <= 1 && nu > 0 && nk > 0; ++adjoint)
+                check_undefined_pair(state, unknowns[0], knowns[0], adjoint);
+            continue;
+        }
+        check_defined_pairs(state);
         if (nu == 0 || nk == 0) continue;
         /* Each variable (event indicators and time included) as the unknown by a
          * known of the mode, and as the known for an unknown of it. */

@@ -43,6 +43,8 @@ extern const int MD_N_VARIABLES;
 extern const MdUnknown MD_OUTPUTS[], MD_DERIVATIVES[], MD_INITIALUNKNOWNS[];
 extern const int MD_N_OUTPUTS, MD_N_DERIVATIVES, MD_N_INITIALUNKNOWNS;
 /* FMI 3.0's <EventIndicator> elements (none in an FMI 2.0 description). */
+/* The model description's providesDirectionalDerivative(s) flag. */
+extern const bool MD_PROVIDES_DIRECTIONAL_DERIVATIVE;
 extern const MdUnknown MD_EVENTINDICATORS[];
 extern const int MD_N_EVENTINDICATORS;
 

@@ -122,6 +122,12 @@ def main(xml_path, out_path):
         out.append("};")
         out.append(f"const int MD_N_{section.upper()} = {len(unknowns)};")
         out.append("")
+    # The capability flag (FMI 2.0 providesDirectionalDerivative, FMI 3.0 providesDirectionalDerivatives,
+    # of Model Exchange; Co-Simulation's says the same): where it is false the calls must be errors.
+    me = root.find("ModelExchange")
+    flag = me.get("providesDirectionalDerivatives" if fmi3 else "providesDirectionalDerivative", "false")
+    out.append(f"const bool MD_PROVIDES_DIRECTIONAL_DERIVATIVE = {'true' if flag == 'true' else 'false'};")
+    out.append("")
     with open(out_path, "w") as f:
         f.write("\n".join(out))
 

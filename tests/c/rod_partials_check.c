@@ -13,7 +13,7 @@
 
 #include "rod_partials.h"
 
-#define NF (ROD_NX + ROD_NOUT) /* state derivatives, then F_N, F_T, energy */
+#define NF (ROD_NX + ROD_NOUT) /* state derivatives, then F_N, F_T, energy, the coefficients a .. S_w */
 #define NK (ROD_NX + ROD_NP + ROD_NL) /* states, alpha, mu, delta, epsilon, kappa, beta, then f_x, f_y, tau */
 #define POINTS_PER_MODE 400
 #define REL_TOL 1e-6
@@ -49,6 +49,7 @@ static void values(const RodParams *p, RodMode m, const double x[ROD_NX], double
     f[ROD_NX + ROD_OUT_F_N] = rod_normal_force(p, m, x);
     f[ROD_NX + ROD_OUT_F_T] = rod_friction_force(p, m, x);
     f[ROD_NX + ROD_OUT_ENERGY] = rod_energy(p, m, x);
+    rod_coefficient_outputs(p, x, f + ROD_NX);
 }
 
 static double analytic(const RodPartials *d, int i, int j)

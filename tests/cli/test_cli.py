@@ -113,19 +113,22 @@ def test_validate_passes_on_the_built_fmu_and_writes_its_report(fmu_path, tmp_pa
 
 @pytest.fixture(scope="module")
 def wrong_physics_fmu(tmp_path_factory):
-    """The FMU built from this tree with the Filippov coefficient S_w = (1 + alpha)/k
-    of Proposition lem:Filippov replaced by (2 + alpha)/k."""
+    """The FMU built from this tree with the Filippov coefficient of w' while sticking,
+    S_w = G_NN - G_TN^2/G_TT (eq Sw; for the rod (1 + alpha)/k), replaced by S_w + 1/G_TT
+    (for the rod (2 + alpha)/k), in the contact core's sticking field (w is the body's
+    second velocity)."""
     src = tmp_path_factory.mktemp("wrong")
     for name in ("CMakeLists.txt", "modelDescription.xml"):
         shutil.copy(ROOT / name, src / name)
     for folder in ("fmu_src", "cmake"):
         shutil.copytree(ROOT / folder, src / folder)
-    rod = src / "fmu_src" / "rod" / "rod.c"
-    text = rod.read_text()
-    right = "r.S_w = (1 + al) / k;"
+    core = src / "fmu_src" / "contact" / "contact.c"
+    text = core.read_text()
+    right = "dx[b->velocity[i]] = s.free[i] + s.normal[i] * F - s.friction[i] * F_T;"
     if right not in text:
-        pytest.fail(f"rod.c no longer contains {right!r}: update the wrong-physics patch of this test")
-    rod.write_text(text.replace(right, "r.S_w = (2 + al) / k;"))
+        pytest.fail(f"contact.c no longer contains {right!r}: update the wrong-physics patch of this test")
+    core.write_text(text.replace(right, "dx[b->velocity[i]] = s.free[i] + (s.normal[i] + (i == 1) / s.G_TT) * F"
+                                        " - s.friction[i] * F_T;"))
     cmake = shutil.which("cmake", path=str(pathlib.Path(sys.executable).parent) + os.pathsep + os.environ["PATH"])
     build = src / "build"
     for cmd in ([cmake, "-S", src, "-B", build, f"-DPython3_EXECUTABLE={sys.executable}"],

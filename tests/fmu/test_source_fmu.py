@@ -16,7 +16,7 @@ from helpers.source_build import source_build, sundials_libraries, with_cvode
 
 FMU_SRC = ROOT / "fmu_src"
 # PainleveRod's folders, its own first, then the shared ones below it (the build's include path).
-FOLDERS = [FMU_SRC / "models" / "PainleveRod", FMU_SRC / "rod", FMU_SRC / "fmi"]
+FOLDERS = [FMU_SRC / "models" / "PainleveRod", FMU_SRC / "rod", FMU_SRC / "contact", FMU_SRC / "fmi"]
 GENERATED = ROOT / "build" / "generated" / "PainleveRod"
 FMI_HEADERS = pathlib.Path(fmpy.__file__).parent / "c-code"
 OUTPUTS = ["x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact"]

@@ -40,7 +40,8 @@
     VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
     ROD_RECORD_MODES(VARIABLE)                                                                     \
     VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, mean_out[MEAN_F_N], 0, 0)                     \
-    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, mean_out[MEAN_F_T], 0, 0)
+    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, mean_out[MEAN_F_T], 0, 0)                     \
+    ROD_COEFFICIENT_VARIABLES(VARIABLE, out, ROD_OUT_A)
 
 /* The model's data beyond its variables that an FMU state must carry
  * (the event log's reference and the event guard): INTERNAL(name, field, type). */

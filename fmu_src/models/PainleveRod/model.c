@@ -38,6 +38,7 @@ void model_update(Model *m)
     m->out[ROD_OUT_F_N] = rod_normal_force(&m->params, m->run.mode, m->x);
     m->out[ROD_OUT_F_T] = rod_friction_force(&m->params, m->run.mode, m->x);
     m->out[ROD_OUT_ENERGY] = rod_energy(&m->params, m->run.mode, m->x);
+    rod_coefficient_outputs(&m->params, m->x, m->out);
     m->mean_out[MEAN_F_N] = m->means_held ? m->step_mean[MEAN_F_N] : m->out[ROD_OUT_F_N];
     m->mean_out[MEAN_F_T] = m->means_held ? m->step_mean[MEAN_F_T] : m->out[ROD_OUT_F_T];
     m->stale = false;
@@ -176,7 +177,7 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
         const int row = (int)(unknown - VR_DER_X);
         *value = by_state ? d->dx_x[row][col] : d->dx_p[row][col];
     } else {
-        const int row = (int)(unknown - VR_F_N);
+        const int row = unknown >= VR_A ? ROD_OUT_A + (int)(unknown - VR_A) : (int)(unknown - VR_F_N);
         *value = by_state ? d->out_x[row][col] : d->out_p[row][col];
     }
     return NULL;

@@ -51,7 +51,8 @@
     ROD_RECORD_TIMES(VARIABLE)                                                                     \
     ROD_RECORD_MODES(VARIABLE)                                                                     \
     VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, out[SI_F_N_MEAN], 0, 0)                       \
-    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, out[SI_F_T_MEAN], 0, 0)
+    VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, out[SI_F_T_MEAN], 0, 0)                       \
+    ROD_COEFFICIENT_VARIABLES(VARIABLE, out, SI_A)
 
 #define MODEL_INTERNALS(INTERNAL)                             \
     ROD_RECORD_INTERNALS(INTERNAL) \
@@ -67,7 +68,7 @@
 
 /* Outputs beyond the states and derivatives. */
 enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_F_N_MEAN, SI_F_T_MEAN,
-       SI_NOUT };
+       SI_A, SI_NOUT = SI_A + ROD_OUT_S_W - ROD_OUT_A + 1 };  /* SI_A ..: the rod's coefficients, scaled */
 /* The step means' order (model_step_integrands_at). */
 enum { SI_MEAN_F_N, SI_MEAN_F_T };
 

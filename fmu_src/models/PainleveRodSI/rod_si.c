@@ -117,6 +117,9 @@ static void outputs(Model *m)
     const double spring = m->run.mode.contact ? 0.5 * m->k * gap * gap : 0.0;
     out[SI_ENERGY] = 0.5 * m->m * (out[SI_VX_CM] * out[SI_VX_CM] + out[SI_VY_CM] * out[SI_VY_CM]) +
                      0.5 * m->J * phi * phi + mg * out[SI_Y_CM] + spring;
+    double coefficients[ROD_NOUT];   /* the paper's scaled form, in the floor's frame */
+    rod_coefficient_outputs(&m->rod, m->xs, coefficients);
+    for (int i = ROD_OUT_A; i <= ROD_OUT_S_W; ++i) out[SI_A + i - ROD_OUT_A] = coefficients[i];
     out[SI_F_N_MEAN] = m->means_held ? m->step_mean[SI_MEAN_F_N] : out[SI_F_N];
     out[SI_F_T_MEAN] = m->means_held ? m->step_mean[SI_MEAN_F_T] : out[SI_F_T];
 }

@@ -47,6 +47,13 @@ static bool rod_row(const Model *m, unsigned int unknown, RodRow *r)
     case VR_DER_PHI: i = ROD_PHI; break;
     case VR_F_N: i = -1 - ROD_OUT_F_N; break;
     case VR_F_T: i = -1 - ROD_OUT_F_T; break;
+    case VR_A: case VR_B: case VR_P_PLUS: case VR_P_MINUS: case VR_Q_PLUS: case VR_Q_MINUS: case VR_S_W: {
+        /* the scaled coefficients: factor 1, no exponents */
+        const int o = ROD_OUT_A + (int)(unknown - VR_A);
+        *r = (RodRow){ .A = 1, .u = m->out[SI_A + o - ROD_OUT_A], .d_x = d->out_x[o], .d_p = d->out_p[o],
+                       .d_l = d->out_l[o] };
+        return true;
+    }
     default: return false;
     }
     if (i >= 0) {   /* accelerations: g, g, g/l */

@@ -23,6 +23,7 @@ def user_error(err, command):
     """(exit status, one line) for a failure, or None for a failure that is not the user's
     (a bug: its traceback is shown, on request)."""
     from ..experiments.outcome import SimulationError
+    from ..fmu.body import BodyError
     from ..fmu.experiment import FmuLoadError
     where = f"painleve {command}" if command else "painleve"
     if isinstance(err, UsageError):
@@ -33,6 +34,8 @@ def user_error(err, command):
         return 1, str(err)
     if isinstance(err, KeyboardInterrupt):
         return 130, f"{where}: interrupted (Ctrl-C); nothing more was written"
+    if isinstance(err, BodyError):
+        return 2, f"{where}: {err}"
     if isinstance(err, FmuLoadError):
         return 2, f"{where}: {err}; give a PainleveRod.fmu built for this machine"
     if isinstance(err, SimulationError):

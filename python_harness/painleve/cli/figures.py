@@ -1,7 +1,8 @@
 """`painleve figures`: the paper's figures from simulations of the FMU."""
+from . import body
 from .errors import UsageError
 from .fmus import fmu_file
-from .options import dpi_value, fmu_option, output_path
+from .options import at_least_one, dpi_value, fmu_option, output_path
 
 
 def add_parser(sub):
@@ -14,10 +15,18 @@ def add_parser(sub):
     fig.add_argument("--out", default="out/figures", metavar="DIR", help="where to write (default %(default)s)")
     fig.add_argument("--only", metavar="NAMES", help="a comma-separated subset of GB, eDelta0, video, eLaw")
     fig.add_argument("--dpi", type=dpi_value, default=150, help="PNG resolution, 10 to 1200 (default %(default)s)")
+    body.body_options(fig)
+    fig.add_argument("--points", type=at_least_one, default=81, metavar="N",
+                     help="a body FMU's paradox region: grid points per coordinate (default %(default)s)")
 
 
 def run(args):
     from ..figures.paper import FIGURES, make_figures
+    if args.fmu or args.set:
+        fmu = fmu_file(args.fmu, allow_body=True)
+        if body.is_body(fmu, args):
+            output_path(args.out, "painleve figures: --out", directory=True)
+            return body.run_figures(args, fmu)
     only = None
     if args.only:
         only = [n.strip() for n in args.only.split(",") if n.strip()]

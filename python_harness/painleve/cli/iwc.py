@@ -4,6 +4,7 @@ import math
 
 from ..experiments.strict_json import to_json
 from .errors import UsageError
+from . import body
 from .fmus import fmu_file
 from .options import DEFAULTS, case_options, fmu_option, interface_option
 
@@ -20,6 +21,7 @@ def add_parser(sub):
                                      "OUTSIDE the asymptotic regime, with the reason, in the table and in "
                                      "--json (\"regime\").")
     case_options(iwc)
+    body.body_options(iwc)
     fmu_option(iwc)
     interface_option(iwc)
     iwc.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
@@ -30,6 +32,12 @@ def run(args):
     from ..fmu.experiment import FMI_TYPES, Experiment
     from ..sweep.run import predictions
     from ..theory import analytic as an
+    if args.set or args.guess or args.fmu:
+        fmu = fmu_file(args.fmu, allow_body=True)
+        if body.is_body(fmu, args):
+            return body.run_iwc(args, fmu)
+    if args.v0 is None:
+        args.v0 = DEFAULTS["v0"]
     case = Case(**{k: getattr(args, k) for k in DEFAULTS})
     try:
         case.check()

@@ -123,8 +123,8 @@ def case_options(parser, help_suffix=""):
     g.add_argument("--phi0", type=number, default=DEFAULTS["phi0"], metavar="RAD/T",
                    help="angular velocity; b = -1 + phi0^2 sin(theta0) < 0 is Theorem 1, > 0 Theorem 2 "
                         "(default %(default)s)")
-    g.add_argument("--v0", type=number, default=DEFAULTS["v0"], help="horizontal velocity of the end, > 0 "
-                   "(default %(default)s)")
+    g.add_argument("--v0", type=number, default=None, help="horizontal velocity of the end, > 0 (default "
+                   f"{DEFAULTS['v0']:g}; a body FMU: the slip speed of its own start)")
     g.add_argument("--delta", type=in_range("delta", "delta"), default=DEFAULTS["delta"],
                    help="contact damping, in [0, 1e6] (default %(default)s)")
     g.add_argument("--eps", "--epsilon", dest="epsilon", type=epsilon_value, default=DEFAULTS["epsilon"],

@@ -4,6 +4,8 @@ import time
 
 from ..experiments import interrupt
 from ..experiments.strict_json import to_json
+from . import body
+from .errors import UsageError
 from .fmus import DEFAULT_FMU, fmu_file
 from .options import count, in_range, interface_option, output_path
 
@@ -18,6 +20,9 @@ def add_parser(sub):
     val.add_argument("fmu", nargs="?", metavar="FMU", help=f"the FMU to validate (default: $PAINLEVE_FMU, else "
                                                            f"{DEFAULT_FMU} if there is one, else the one "
                                                            f"installed with the package)")
+    val.add_argument("--fmu", dest="fmu_option", metavar="PATH", help="the FMU, as the positional FMU (a body FMU "
+                     "such as TwoLinkArm.fmu is validated through the generic body path)")
+    body.body_options(val, case=True)
     interface_option(val, all_choice=True)
     val.add_argument("--sample", type=count, default=24, metavar="N",
                      help="Theorem 1 cases drawn at random (fixed seed) beside the fixed ones (default 24)")
@@ -34,6 +39,13 @@ def run(args):
     from ..sweep.run import FmuBlob
     from ..validation import report
     from ..validation.suite import validate
+    if args.fmu and args.fmu_option:
+        raise UsageError("painleve validate: give the FMU once (positional or --fmu)")
+    args.fmu = args.fmu or args.fmu_option
+    if args.fmu or args.set:
+        fmu = fmu_file(args.fmu, probe=False, allow_body=True)
+        if body.is_body(fmu, args):
+            return body.run_validate(args, fmu)
     fmu = fmu_file(args.fmu, probe=False)       # one that does not instantiate fails a check (exit 1)
     if args.report:
         output_path(args.report, "painleve validate: --report")

@@ -26,10 +26,8 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
-import scipy.optimize
 
-from . import rigid_limit
+from . import general, rigid_limit
 from .hypotheses import HypothesisError, as_result, floats
 from .rod_coefficients import (ALPHA, MU, S_phi, S_w, a, b, c_minus, c_of, c_plus, check_hypotheses, check_theorem1,
                                check_theorem2, lambda_of, lambda_pm, mu_P, p_minus, p_of, p_plus, q_minus, q_of, q_plus,
@@ -72,65 +70,13 @@ def _coeffs(delta, theta0, alpha, mu):
     return np.broadcast_arrays(floats(delta), th, p_of(th, 1.0, al, m), q_of(th, 1.0, al, m), s_w_of(th, al))
 
 
-def _xi_tau(delta, sw, lp):
-    """Roots xi_pm of xi^2 + delta S_w xi + S_w = 0 and the least positive tau_s of eq eGeneral.
-
-    Real case: tau_s = ln R/(xi_+ - xi_-), R = xi_-^2(lambda_+ - xi_+)/(xi_+^2(lambda_+ - xi_-)),
-    evaluated as log1p(u)/u * S_w(1 + lambda_+ delta)/(xi_+^2(lambda_+ - xi_-)) with
-    u = R - 1 = (xi_+ - xi_-) S_w(1 + lambda_+ delta)/(xi_+^2(lambda_+ - xi_-)), so the
-    double root delta = 2/sqrt(S_w) is the analytic limit u -> 0.  Complex case
-    xi_pm = -sigma +- i omega: tau_s = (varphi - pi n)/omega, n = floor(varphi/pi),
-    varphi = arg((lambda_+ - xi_+) xi_-^2) (the paper's phi; its 2i/(xi_+ - xi_-) = 1/omega).
-    """
-    disc = delta ** 2 * sw ** 2 - 4 * sw
-    real = disc >= 0
-    dxi = np.sqrt(np.abs(disc)) * np.where(real, 1.0, 1j)  # xi_+ - xi_-
-    xim = -(delta * sw + dxi) / 2
-    xip = np.where(real, sw / xim, np.conj(xim))  # xi_+ xi_- = S_w, no cancellation
-    with np.errstate(divide="ignore", invalid="ignore"):  # each branch is junk on the other's side
-        k = (sw * (1 + lp * delta) / (xip ** 2 * (lp - xim))).real
-        u = (dxi * k).real
-        tau_real = np.where(u == 0, 1.0, np.log1p(u) / u) * k
-        varphi = np.angle((lp - xip) * xim ** 2)
-        tau_cplx = np.mod(varphi, np.pi) / (dxi.imag / 2)
-    return xip, xim, np.where(real, tau_real, tau_cplx)
-
-
 def e_closed_form(delta, theta0, *, alpha=ALPHA, mu=MU):
-    """e(delta, theta0) from eq eGeneral with tau_s the least positive root.
-
-    Over-damped (real xi), critically damped (double root, as a limit) and
-    oscillatory (complex xi) cases; see _xi_tau.
+    """e(delta, theta0) from eq eGeneral with tau_s the least positive root: the general body's
+    formula (general.e_of) on the rod's coefficients. Over-damped (real xi), critically damped
+    (double root, as a limit) and oscillatory (complex xi) cases; see general.xi_tau.
     """
     delta, th, pp, qp, sw = _coeffs(delta, theta0, alpha, mu)
-    lp = lambda_of(pp, delta)[0]
-    xip, xim, tau = _xi_tau(delta, sw, lp)
-    ee = (xip / xim) * (lp - xim) * pp / (qp * lp) * np.exp(xip * tau)  # eq eGeneral
-    return as_result(ee.real)
-
-
-def _e_integrated_one(delta, pp, qp, sw):
-    lp = lambda_of(pp, delta)[0]
-    w0 = -pp / qp  # eq initStick with v0 = 1
-    x0 = np.array([w0 / lp, w0])
-    A = np.array([[0.0, 1.0], [-sw, -delta * sw]])  # eq stickEps0
-
-    def state(t):
-        return scipy.linalg.expm(A * t) @ x0
-
-    def g(t):  # hat F_N = -yhat - delta w: positive while sticking, zero on Gamma_0
-        return -(state(t) @ np.array([1.0, delta]))
-
-    h = 0.25 / max(np.sqrt(sw), delta * sw)  # well below every time scale 1/|xi|
-    t0, t1 = 0.0, h
-    for _ in range(100000):
-        if g(t1) <= 0:
-            break
-        t0, t1 = t1, t1 + h
-    else:  # pragma: no cover - the root always exists (Proposition prop:stick)
-        raise RuntimeError("no end of sticking found")
-    ts = scipy.optimize.brentq(g, t0, t1, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
-    return state(ts)[1]
+    return as_result(general.e_of(delta, pp, qp, sw))
 
 
 def e_integrated(delta, theta0, *, alpha=ALPHA, mu=MU):
@@ -141,7 +87,7 @@ def e_integrated(delta, theta0, *, alpha=ALPHA, mu=MU):
     bracketed by stepping and refined with brentq; e = w there.
     """
     delta, th, pp, qp, sw = _coeffs(delta, theta0, alpha, mu)
-    out = np.array([_e_integrated_one(*args) for args in
+    out = np.array([general.e_integrated_one(*args) for args in
                     zip(delta.ravel(), pp.ravel(), qp.ravel(), sw.ravel())]).reshape(delta.shape)
     return as_result(out)
 

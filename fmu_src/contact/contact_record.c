@@ -1,25 +1,25 @@
-/* The event iteration of a rod model: see rod_record.h. */
-#include "rod_record.h"
+/* The event iteration of a model on the contact core: see contact_record.h. */
+#include "contact_record.h"
 
 #include <math.h>
 #include <stdio.h>
 
-RodRecord rod_record_new(void)
+ContactRecord contact_record_new(void)
 {
-    return (RodRecord){ .mode = { false, +1 }, .instant = -INFINITY };
+    return (ContactRecord){ .mode = { false, +1 }, .instant = -INFINITY };
 }
 
-RodMode rod_initial_mode(const RodParams *p, double x[ROD_NX])
+ContactMode contact_initial_mode(const Contact *c, double x[])
 {
     /* Slip follows the sign of v until the rules decide. */
-    const double v = x[ROD_V];
+    const double v = contact_body(c, x).v;
     bool changed;
-    return rod_decide_mode(p, (RodMode){ false, (v > 0) - (v < 0) }, x, &changed);
+    return contact_decide_mode(c, (ContactMode){ false, (v > 0) - (v < 0) }, x, &changed);
 }
 
-void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double time)
+void contact_record_start(ContactRecord *r, const Contact *c, double x[], double time)
 {
-    r->mode = rod_initial_mode(p, x);
+    r->mode = contact_initial_mode(c, x);
     r->t_switch = r->t_stick_begin = r->t_stick_end = r->t_contact_begin = r->t_contact_end = time;
     r->switches = r->sticks = 0;
     r->initial_event = true;
@@ -28,30 +28,30 @@ void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double
     r->returns = 0;
 }
 
-void rod_record_describe_start(const RodRecord *r, char *text, size_t size)
+void contact_record_describe_start(const ContactRecord *r, char *text, size_t size)
 {
     snprintf(text, size, "initial mode contact = %d, mode = %+d", r->mode.contact, r->mode.slip);
 }
 
 /* Which indicators changed sign since integration last restarted. */
-static void describe_fired(const RodRecord *r, const double z[ROD_NZ], char *text, size_t size)
+static void describe_fired(const ContactRecord *r, const double z[CONTACT_NZ], char *text, size_t size)
 {
     size_t n = 0;
     if (r->initial_event) {
         snprintf(text, size, "none (initial event iteration)");
         return;
     }
-    for (int i = 0; i < ROD_NZ && n < size; ++i)
+    for (int i = 0; i < CONTACT_NZ && n < size; ++i)
         if ((z[i] > 0) != (r->z_at_restart[i] > 0) || z[i] == 0)
             n += (size_t)snprintf(text + n, size - n, "%s'%s' = %.3g", n ? ", " : "",
-                                  rod_indicator_name(r->mode, i), z[i]);
+                                  contact_indicator_name(r->mode, i), z[i]);
     if (n == 0) snprintf(text, size, "none (time or step event)");
 }
 
-static bool sticking(RodMode mode) { return mode.contact && mode.slip == 0; }
+static bool sticking(ContactMode mode) { return mode.contact && mode.slip == 0; }
 
 /* The switch from `before` to the current mode, at `time`, in the record. */
-static void record_switch(RodRecord *r, RodMode before, double time)
+static void record_switch(ContactRecord *r, ContactMode before, double time)
 {
     r->t_switch = time;
     ++r->switches;
@@ -65,31 +65,32 @@ static void record_switch(RodRecord *r, RodMode before, double time)
 }
 
 /* An event at `time` on the instant of the current run of events (round-off apart). */
-static bool same_instant(const RodRecord *r, double time)
+static bool same_instant(const ContactRecord *r, double time)
 {
     return time - r->instant <= 1e-12 * (1 + fabs(time));
 }
 
-bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ], double time,
-                      bool floor_jumped, ModelEvent *e)
+bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const double z[CONTACT_NZ], double time,
+                          bool floor_jumped, ModelEvent *e)
 {
     char fired[512];
     describe_fired(r, z, fired, sizeof fired);
     r->initial_event = false;
-    const RodMode before = r->mode;
-    if (floor_jumped && x[ROD_V] != 0) r->mode.slip = x[ROD_V] > 0 ? +1 : -1;
+    const ContactMode before = r->mode;
+    const double v = contact_body(c, x).v;
+    if (floor_jumped && v != 0) r->mode.slip = v > 0 ? +1 : -1;
     /* An event that switched nothing, or another at the same instant, means the solver came
      * straight back to a surface the state had been moved off: its error exceeds the move.
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
     const int again = r->returns + (same_instant(r, time) ? r->events_at_instant : 0);
     bool moved;
-    const RodEventResult result =
-        rod_event_update(p, &r->mode, x, ldexp(1.0, again < ROD_MAX_RETURNS ? again : ROD_MAX_RETURNS), &moved);
+    const ContactEventResult result = contact_event_update(
+        c, &r->mode, x, ldexp(1.0, again < CONTACT_MAX_RETURNS ? again : CONTACT_MAX_RETURNS), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
-    if (result != ROD_SETTLED) {
-        snprintf(e->text, sizeof e->text, result == ROD_PING_PONG
+    if (result != CONTACT_SETTLED) {
+        snprintf(e->text, sizeof e->text, result == CONTACT_PING_PONG
                  ? "mode decision does not settle at t = %.17g (contact = %d, mode = %+d): rules ping-pong"
                  : "the state cannot be moved off a switching surface at t = %.17g (contact = %d, mode = %+d)",
                  time, r->mode.contact, r->mode.slip);
@@ -97,7 +98,7 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
     }
     if (e->switched) record_switch(r, before, time);
     /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
-    r->returns = e->switched || !moved ? 0 : (r->returns < ROD_MAX_RETURNS ? r->returns + 1 : ROD_MAX_RETURNS);
+    r->returns = e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
     snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
              before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
     /* Zeno guard: events that do not advance time beyond round-off. */
@@ -105,22 +106,22 @@ bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const 
         r->instant = time;
         r->events_at_instant = 0;
     }
-    if (++r->events_at_instant < ROD_MAX_EVENTS_AT_ONE_INSTANT) return true;
+    if (++r->events_at_instant < CONTACT_MAX_EVENTS_AT_ONE_INSTANT) return true;
     snprintf(e->text, sizeof e->text,
              "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter at the boundary %s; "
-             "contact = %d, mode = %+d, theta = %g)",
-             ROD_MAX_EVENTS_AT_ONE_INSTANT, time, fired, r->mode.contact, r->mode.slip, x[ROD_THETA]);
+             "contact = %d, mode = %+d, y = %g)",
+             CONTACT_MAX_EVENTS_AT_ONE_INSTANT, time, fired, r->mode.contact, r->mode.slip, contact_body(c, x).y);
     return false;
 }
 
-const char *rod_record_implausible(const RodRecord *r)
+const char *contact_record_implausible(const ContactRecord *r)
 {
     if (r->mode.slip < -1 || r->mode.slip > 1) return "mode";
     if (r->switches < 0 || r->sticks < 0 || r->sticks > r->switches) return "switches";
     const double times[] = { r->t_switch, r->t_stick_begin, r->t_stick_end, r->t_contact_begin, r->t_contact_end };
     for (size_t i = 0; i < sizeof times / sizeof times[0]; ++i)
         if (!isfinite(times[i])) return "t_switch";
-    if (r->events_at_instant < 0 || r->events_at_instant >= ROD_MAX_EVENTS_AT_ONE_INSTANT) return "events_at_instant";
-    if (r->returns < 0 || r->returns > ROD_MAX_RETURNS) return "returns";
+    if (r->events_at_instant < 0 || r->events_at_instant >= CONTACT_MAX_EVENTS_AT_ONE_INSTANT) return "events_at_instant";
+    if (r->returns < 0 || r->returns > CONTACT_MAX_RETURNS) return "returns";
     return NULL;
 }

@@ -1,0 +1,117 @@
+"""`painleve iwc`, `validate` and `figures` for any body FMU (`--fmu TwoLinkArm.fmu`, or the rod
+through the same path with `--set`): the start, the theory and the figure from the FMU's own outputs
+(fmu.body, validation.body, figures.body), nothing body-specific here."""
+import math
+
+from ..experiments.strict_json import to_json
+from .errors import UsageError
+from .options import number
+
+
+def assignment(text):
+    """NAME=VALUE as (name, float)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise UsageError(f"--set/--guess take NAME=VALUE, such as theta1=2.9; got {text!r}")
+    try:
+        return name.strip(), number(value)
+    except Exception:
+        raise UsageError(f"--set/--guess {text}: {value!r} is not a finite number") from None
+
+
+def body_options(parser, *, case=False):
+    g = parser.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): the start on the floor")
+    g.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a start value (a parameter, or a state that fixes the configuration, e.g. theta1=2.9); "
+                        "the states not given are solved for so that the contact point is on the floor (y = 0) "
+                        "with velocity (v0, w0). Repeat it for several. With the rod's FMU it runs the rod "
+                        "through the same generic path")
+    g.add_argument("--guess", action="append", default=[], metavar="NAME=VALUE",
+                   help="where to start solving for a state that is not given (picks a branch, e.g. theta2=-1)")
+    if case:   # validate has no case options of its own
+        g.add_argument("--v0", type=number, default=None, help="slip speed of the contact point (default: that of "
+                       "the FMU's own start)")
+        g.add_argument("--delta", type=number, default=1.0, help="contact damping, scaled (default 1)")
+
+
+def is_body(fmu, args):
+    """The generic path: the FMU is not the rod, or --set was given."""
+    from fmpy import read_model_description
+    names = {v.name for v in read_model_description(fmu).modelVariables}
+    return bool(getattr(args, "set", None)) or not {"theta", "phi", "alpha"} <= names
+
+
+def _case(args, epsilon):
+    from ..fmu.body_case import BodyCase
+    return BodyCase(given=tuple(assignment(s) for s in args.set), v0=args.v0, epsilon=epsilon, delta=args.delta,
+                    w0=epsilon * getattr(args, "w10", 0.0), guess=tuple(assignment(s) for s in args.guess))
+
+
+def _fmt(x):
+    return "nan" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.6g}"
+
+
+def run_iwc(args, fmu):
+    from ..fmu.body import Body
+    from ..fmu.body_case import predict
+    case = _case(args, args.epsilon)
+    with Body(fmu) as body:
+        predicted = predict(body, case)
+        if predicted.hypotheses:
+            raise UsageError(f"painleve iwc: {predicted.hypotheses} at the start "
+                             + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
+                             + "; choose a configuration inside the paradox region (painleve figures --fmu "
+                               "shows it) or another --v0")
+        outcome = body.iwc(predicted.start)
+        name = body.name
+    co = predicted.coefficients
+    v0 = predicted.start_v0
+    error = outcome.w / v0 - predicted.e
+    if args.json:
+        print(to_json({"fmu": fmu, "model": name, "start": predicted.start,
+                       "coefficients": {k: float(getattr(co, k)) for k in ("a", "b", "p_plus", "p_minus", "q_plus",
+                                                                         "q_minus", "S_w")},
+                       "predicted": {"quadrant": predicted.quadrant, "theorem": predicted.theorem, "e": predicted.e,
+                                     "w1_star": predicted.w1_star, "hypotheses": predicted.hypotheses},
+                       "simulated": {"w": outcome.w, "v": outcome.v, "t_return": outcome.t_return,
+                                     "iwc": outcome.stuck, "events": outcome.events, "state": outcome.state},
+                       "errors": {"w_error": error}}))
+        return 0
+    print(f"IWC of {name}: {fmu} through Model Exchange (generic body path)")
+    print("start on the floor: " + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items()))
+    print(f"coefficients there: a={float(co.a):.4g} b={float(co.b):.4g} p_+={float(co.p_plus):.4g} "
+          f"p_-={float(co.p_minus):.4g} q_+={float(co.q_plus):.4g} q_-={float(co.q_minus):.4g} "
+          f"S_w={float(co.S_w):.4g}; eps={predicted.epsilon:g} delta={predicted.delta:g}")
+    print(f"quadrant: {predicted.quadrant}; " + (predicted.hypotheses or f"Theorem {predicted.theorem} applies")
+          + (f"; w1* = {predicted.w1_star:.6g}" if predicted.theorem == 2 else ""))
+    print(f"{'quantity':<22}{'simulated':<16}{'analytic (eps -> 0)':<22}difference")
+    expected = "IWC" if predicted.theorem == 1 or case.w0 / case.epsilon < predicted.w1_star else "lift-off"
+    print(f"{'outcome':<22}{'IWC' if outcome.stuck else 'lift-off':<16}{expected:<22}")
+    if expected == "lift-off":
+        print(f"{'w at return':<22}{_fmt(outcome.w):<16}{'O(eps)':<22}w/eps = {outcome.w / case.epsilon:.3g}")
+    else:
+        diff = f"{error:+.3e} ({error / predicted.e:+.3%} of e)" if not math.isnan(predicted.e) else ""
+        print(f"{'w/v0 at return':<22}{_fmt(outcome.w / v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
+    print(f"{'v at return':<22}{_fmt(outcome.v):<16}{'0 + O(eps)':<22}")
+    print(f"{'t_return':<22}{_fmt(outcome.t_return):<16}{'O(eps ln 1/eps)':<22}events: {outcome.events}")
+    return 0
+
+
+def run_validate(args, fmu):
+    from ..validation import report
+    from ..validation.body import validate_body
+    checks = validate_body(fmu, _case(args, 1e-4))
+    if args.json:
+        print(to_json({"fmu": fmu, "passed": all(c.passed for c in checks), "checks": [c.as_dict() for c in checks]}))
+    else:
+        print(f"Validation of {fmu} (generic body path)")
+        print(report.table(checks))
+    return 0 if all(c.passed for c in checks) else 1
+
+
+def run_figures(args, fmu):
+    from ..figures.body import paradox_figure
+    given = dict(assignment(s) for s in args.set)
+    for path in paradox_figure(fmu, args.out, given=given, n=args.points, dpi=args.dpi):
+        print(path)
+    return 0

@@ -1,0 +1,221 @@
+"""Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables (issue #27).
+
+A body FMU has continuous states (whatever they are), the contact point's height `y`, slip speed
+`v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
+stiffness `k` and damping `c`: eps ~ k^-1/2, delta ~ c k^-1/2, as every body's scaling has it),
+and the coefficients of eq Painleve at the current state as outputs (a, b, p_plus, p_minus,
+q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematics:
+
+- `outputs(values)`: any outputs at a state (the instance initialized from those start values);
+- `compliance(values, epsilon, delta)`: the start values that give the body that eps and delta;
+- `floor_start(values, v0)`: a consistent start, the contact point on the floor (y = 0) with
+  velocity (v0, w0), solving for the states the user did not give by Gauss-Newton on the FMU's
+  own y, v, w (finite-difference Jacobian; for the arm: theta2 and both rates from theta1);
+- `coefficients(values)`: theory.general.Coefficients at a state, with its epsilon and delta;
+- `iwc(values)`: the run from that start until the contact point, having touched, is back at
+  y = 0 (Model Exchange, fmpy's CVode from event to event, me_fast_loop), its state there.
+
+FMI 2.0 Model Exchange through the fast loop's FMI 2.0 calls; FMI 3.0 through fmpy's simulate_fmu."""
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..experiments.outcome import SimulationError
+from ..theory import general
+from .experiment import Experiment
+from .me_fast_loop import integrate
+
+CONTACT = ("y", "v", "w")
+REQUIRED = CONTACT + ("contact", "epsilon", "delta") + general.NAMES
+STIFFNESS, DAMPING = "k", "c"      # the SI bodies' contact parameters when epsilon, delta are calculated
+
+
+class BodyError(ValueError):
+    """The FMU is not a body the harness can run, or no start state satisfies what was asked."""
+
+
+@dataclass(frozen=True)
+class BodyOutcome:
+    """A run's state at the contact point's return to y = 0 after contact."""
+    w: float
+    v: float
+    y: float
+    t_return: float
+    stuck: bool          # the run went through a stick (mode 0), if the FMU reports `mode`
+    events: int
+    state: dict          # every continuous state there
+
+
+class Body:
+    """One body FMU, extracted and instantiated once (Experiment), for any number of evaluations and runs."""
+
+    def __init__(self, fmu_path):
+        self.experiment = Experiment(fmu_path, fmi_type="ModelExchange")
+        md = self.experiment.model_description
+        self.variables = {v.name: v for v in md.modelVariables}
+        missing = [n for n in REQUIRED if n not in self.variables]
+        if missing:
+            self.close()
+            raise BodyError(f"{fmu_path} is not a body FMU: it has no variable {', '.join(missing)}")
+        self.states = [d.variable.derivative.name for d in md.derivatives]
+        self.name = md.modelName
+
+    def close(self):
+        self.experiment.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def defaults(self, names):
+        return {n: float(self.variables[n].start) for n in names if self.variables[n].start is not None}
+
+    def _known(self, values):
+        unknown = [k for k in values if k not in self.experiment.vr]
+        if unknown:
+            raise BodyError(f"{self.name} has no variable {unknown[0]!r}")
+
+    def _initialize(self, instance, values, tolerance=None):
+        vr = self.experiment.vr
+        instance.setupExperiment(tolerance=tolerance, startTime=0.0)
+        instance.setReal([vr[k] for k in values], [float(x) for x in values.values()])
+        instance.enterInitializationMode()
+        instance.exitInitializationMode()
+
+    def outputs(self, values, names):
+        """{name: value} after initialization from the start values `values`."""
+        self._known(values)
+        self._known(dict.fromkeys(names))
+        with self.experiment.fresh_run(f"{self.name} at {values}") as instance:
+            self._initialize(instance, values)
+            return self.experiment.read(list(names))
+
+    def coefficients(self, values):
+        """(theory.general.Coefficients, epsilon, delta) at the state `values`."""
+        out = self.outputs(values, general.NAMES + ("epsilon", "delta"))
+        return general.Coefficients.of(out), out["epsilon"], out["delta"]
+
+    def compliance(self, values, epsilon, delta):
+        """`values` with what gives this epsilon and delta: the parameters themselves, or k and c scaled
+        by eps ~ k^-1/2, delta ~ c k^-1/2 from their current values (checked by reading them back)."""
+        if self.variables["epsilon"].causality == "parameter":
+            return dict(values, epsilon=epsilon, delta=delta)
+        if STIFFNESS not in self.variables or DAMPING not in self.variables:
+            raise BodyError(f"{self.name}: epsilon is not a parameter and there is no {STIFFNESS}, {DAMPING} to set it")
+        now = self.outputs(values, ("epsilon", STIFFNESS))
+        k = now[STIFFNESS] * (now["epsilon"] / epsilon) ** 2
+        c = delta / self.outputs(dict(values, **{STIFFNESS: k, DAMPING: 1.0}), ("delta",))["delta"]  # delta ~ c
+        out = dict(values, **{STIFFNESS: k, DAMPING: c})
+        got = self.outputs(out, ("epsilon", "delta"))
+        if not (math.isclose(got["epsilon"], epsilon, rel_tol=1e-9) and math.isclose(got["delta"], delta,
+                                                                                     rel_tol=1e-9, abs_tol=1e-12)):
+            raise BodyError(f"{self.name}: scaling {STIFFNESS}, {DAMPING} gave epsilon {got['epsilon']:.6g}, "
+                            f"delta {got['delta']:.6g}, not {epsilon:g}, {delta:g}")
+        return out
+
+    def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40):
+        """`values` completed with the states it does not give, so that y = 0, v = v0, w = w0 (Gauss-Newton,
+        least squares: states that do not move y, v, w keep their guess, the FMU's start otherwise)."""
+        unknown = [s for s in self.states if s not in values]
+        if not unknown:
+            raise BodyError("every state is given: leave those to solve for (y = 0, v = v0, w = w0) out")
+        u = np.array([float((guess or {}).get(s, self.defaults([s]).get(s, 0.0))) for s in unknown])
+        target = np.array([0.0, v0, w0])
+
+        def residual(u):
+            out = self.outputs(dict(values, **dict(zip(unknown, (float(x) for x in u)))), CONTACT)
+            return np.array([out[n] for n in CONTACT]) - target
+        try:
+            u, r = self._gauss_newton(residual, u, v0, max_iterations)
+        except SimulationError as err:    # a trial state outside the FMU's ranges: no start near the guess
+            raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values}: "
+                            f"the search left the FMU's ranges ({str(err).split('the FMU stopped: ')[-1]}); "
+                            f"give other states or --guess") from None
+        if np.any(np.abs(r) > 1e-12 * (1 + abs(v0) + abs(w0))):
+            raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values} "
+                            f"(residual y, v - v0, w - w0 = {r}); give other states or --guess")
+        return dict(values, **dict(zip(unknown, (float(x) for x in u))))
+
+    @staticmethod
+    def _gauss_newton(residual, u, v0, max_iterations):
+        r = residual(u)
+        for _ in range(max_iterations):
+            h = 1e-7 * (1 + np.abs(u))
+            jac = np.column_stack([(residual(u + h[i] * np.eye(len(u))[i]) - r) / h[i] for i in range(len(u))])
+            step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+            u = u + step
+            r = residual(u)
+            if np.all(np.abs(step) <= 1e-15 * (1 + np.abs(u))) or np.all(np.abs(r) <= 1e-15 * (1 + abs(v0))):
+                break
+        return u, r
+
+    def iwc(self, values, *, relative_tolerance=None, horizon=None, doublings=30):
+        """The run from `values` until the contact point, having been in contact, is back at y = 0 with
+        contact off. The horizon, unknown in a body's own time unit, starts at `horizon` (default
+        epsilon) and doubles until the run returns."""
+        eps = self.outputs(values, ("epsilon",))["epsilon"]
+        rtol = relative_tolerance or min(1e-6, eps / 100)
+        stop = horizon or eps
+        for _ in range(doublings):
+            out = self._run(values, rtol, stop)
+            if out is not None:
+                return out
+            stop *= 2
+        raise SimulationError(f"{self.name}: no return to y = 0 before t = {stop / 2:g}")
+
+    def _run(self, values, rtol, stop_time):
+        if not self.experiment.model_description.fmiVersion.startswith("2."):
+            return self._run_trajectory(values, rtol, stop_time)
+        seen = dict(touched=False, stuck=False, events=0)
+        back = {}
+        has_mode = "mode" in self.experiment.vr
+
+        def at_event(t):
+            seen["events"] += 1
+            contact = bool(self.experiment.instance.getBoolean([self.experiment.vr["contact"]])[0])
+            if has_mode and contact:
+                seen["stuck"] |= int(self.experiment.instance.getInteger([self.experiment.vr["mode"]])[0]) == 0
+            seen["touched"] |= contact
+            if seen["touched"] and not contact:
+                back.update(self.experiment.read(list(CONTACT) + self.states), t=t)
+                return back["y"] >= 0
+            return False
+
+        with self.experiment.fresh_run(f"{self.name} from {values}") as instance:
+            self._initialize(instance, values, rtol)
+            seen["touched"] = bool(instance.getBoolean([self.experiment.vr["contact"]])[0])
+            integrate(instance, self.experiment.model_description, relative_tolerance=rtol, stop_time=stop_time,
+                      at_event=at_event)
+        if back.get("y", -1.0) < 0:
+            return None
+        return BodyOutcome(w=back["w"], v=back["v"], y=back["y"], t_return=back["t"], stuck=seen["stuck"],
+                           events=seen["events"], state={s: back[s] for s in self.states})
+
+    def _run_trajectory(self, values, rtol, stop_time):
+        """An FMI 3.0 FMU's run: fmpy's simulate_fmu (Model Exchange, CVode, events recorded as two rows each),
+        stopped one step after the return; the return is the first row after contact with contact off, y >= 0."""
+        seen = dict(touched=False, back=False)
+
+        def step_finished(time, recorder):
+            if seen["back"]:
+                return False
+            contact = bool(self.experiment.instance.getBoolean([self.experiment.vr["contact"]])[0])
+            seen["touched"] |= contact
+            seen["back"] = seen["touched"] and not contact and self.experiment.read(["y"])["y"] >= 0
+            return True
+        names = list(CONTACT) + self.states + ["contact"] + (["mode"] if "mode" in self.experiment.vr else [])
+        r = self.experiment._simulate(f"{self.name} from {values}", start_values=dict(values), output=names,
+                                      stop_time=stop_time, output_interval=stop_time / 500, relative_tolerance=rtol,
+                                      solver="CVode", step_finished=step_finished)
+        touched = np.maximum.accumulate(r["contact"].astype(bool))
+        back = np.nonzero(touched & ~r["contact"].astype(bool) & (r["y"] >= 0))[0]
+        if back.size == 0:
+            return None
+        i = back[0]
+        stuck = bool(np.any((r["mode"][:i] == 0) & r["contact"][:i].astype(bool))) if "mode" in names else False
+        return BodyOutcome(w=float(r["w"][i]), v=float(r["v"][i]), y=float(r["y"][i]), t_return=float(r["time"][i]),
+                           stuck=stuck, events=int(np.sum(np.diff(r["time"][:i + 1]) == 0)),
+                           state={s: float(r[s][i]) for s in self.states})
