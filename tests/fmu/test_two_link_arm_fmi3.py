@@ -11,21 +11,15 @@ from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Model
 
 from helpers.fmi_sim import fmi3_fmu_fmi_sim_can_read, run_fmi_sim
+from helpers.fmi_versions import assert_same_variables_and_token
 
 STATES = ("theta1", "theta2", "omega1", "omega2")
 OUTPUTS = STATES + ("x", "y", "v", "w", "F_N", "F_T", "energy", "p_plus", "a")
 
 
 def test_the_variables_token_and_capabilities_are_the_fmi2_fmus(arm_path, arm3_path):
-    md2, md3 = read_model_description(arm_path), read_model_description(arm3_path)
-    assert md3.guid == md2.guid
-    vars3 = {v.name: v for v in md3.modelVariables}
-    for v in md2.modelVariables:
-        w = vars3[v.name]
-        assert (w.valueReference, w.causality, w.variability, w.start, w.unit, w.min, w.max) == \
-            (v.valueReference, v.causality, v.variability, v.start, v.unit, v.min, v.max), v.name
+    md2, md3 = assert_same_variables_and_token(arm_path, arm3_path)
     assert len(md3.eventIndicators) == md2.numberOfEventIndicators == 4
-    assert [u.variable.name for u in md3.outputs] == [u.variable.name for u in md2.outputs]
     time = next(v for v in md3.modelVariables if v.causality == "independent")
     assert (time.name, time.unit) == ("time", "s")
     for interface in (md2.modelExchange, md2.coSimulation, md3.modelExchange, md3.coSimulation):
