@@ -162,6 +162,7 @@ class Experiment:
         self.messages.clear()
         try:
             yield self.instance
+            interrupt.check()       # a Ctrl-C held back in a CVode callback stops here
         except Exception as err:
             interrupt.check()       # a failure that a dropped Ctrl-C caused is the Ctrl-C
             errors = [message for status, _, message in self.messages if status >= FMI2_ERROR]
