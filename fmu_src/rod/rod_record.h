@@ -1,13 +1,13 @@
 /* The event iteration of a rod model (PainleveRod, PainleveRodSI): the contact core's
- * record (contact_record.h) on the rod body, under the rod's names, and the rod's
- * state variables for a model's config.h list. */
+ * record (contact_record.h) on the rod body, for the calls that need the rod's contact,
+ * and the rod's state variables for a model's config.h list. (The record's variables,
+ * its creation, description and check are the core's own: a model calls them by their
+ * contact_record names.) */
 #ifndef ROD_RECORD_H
 #define ROD_RECORD_H
 
 #include "contact_record.h"
 #include "rod.h"
-
-typedef ContactRecord RodRecord;
 
 /* A rod model's continuous states (its Model's x, within +-BOUND) and their
  * derivatives (dx), for its config.h list, in the order of rod.h. */
@@ -25,38 +25,23 @@ typedef ContactRecord RodRecord;
     VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
     VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)
 
-/* The record's and the coefficients' variables (contact_record.h). */
-#define ROD_COEFFICIENT_VARIABLES CONTACT_COEFFICIENT_VARIABLES
-#define ROD_RECORD_TIMES CONTACT_RECORD_TIMES
-#define ROD_RECORD_MODES CONTACT_RECORD_MODES
-#define ROD_RECORD_INTERNALS CONTACT_RECORD_INTERNALS
-
-static inline RodRecord rod_record_new(void) { return contact_record_new(); }
-
 static inline RodMode rod_initial_mode(const RodParams *p, double x[ROD_NX])
 {
     const Contact c = rod_contact(p);
     return contact_initial_mode(&c, x);
 }
 
-static inline void rod_record_start(RodRecord *r, const RodParams *p, double x[ROD_NX], double time)
+static inline void rod_record_start(ContactRecord *r, const RodParams *p, double x[ROD_NX], double time)
 {
     const Contact c = rod_contact(p);
     contact_record_start(r, &c, x, time);
 }
 
-static inline void rod_record_describe_start(const RodRecord *r, char *text, size_t size)
-{
-    contact_record_describe_start(r, text, size);
-}
-
-static inline bool rod_record_event(RodRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ],
+static inline bool rod_record_event(ContactRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ],
                                     double time, bool floor_jumped, ModelEvent *e)
 {
     const Contact c = rod_contact(p);
     return contact_record_event(r, &c, x, z, time, floor_jumped, e);
 }
-
-static inline const char *rod_record_implausible(const RodRecord *r) { return contact_record_implausible(r); }
 
 #endif

@@ -35,18 +35,18 @@
     VARIABLE(F_N, "F_N", REAL, CALCULATED, out[ROD_OUT_F_N], 0, 0)                                 \
     VARIABLE(F_T, "F_T", REAL, CALCULATED, out[ROD_OUT_F_T], 0, 0)                                 \
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[ROD_OUT_ENERGY], 0, 0)                        \
-    ROD_RECORD_TIMES(VARIABLE)                                                                     \
+    CONTACT_RECORD_TIMES(VARIABLE)                                                                     \
     VARIABLE(KAPPA, "kappa", REAL, PARAMETER, params.kappa, 0, 1e6)                                \
     VARIABLE(BETA, "beta", REAL, PARAMETER, params.beta, 0, 1e6)                                   \
-    ROD_RECORD_MODES(VARIABLE)                                                                     \
+    CONTACT_RECORD_MODES(VARIABLE)                                                                     \
     VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, mean_out[MEAN_F_N], 0, 0)                     \
     VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, mean_out[MEAN_F_T], 0, 0)                     \
-    ROD_COEFFICIENT_VARIABLES(VARIABLE, out, ROD_OUT_A)
+    CONTACT_COEFFICIENT_VARIABLES(VARIABLE, out, ROD_OUT_A)
 
 /* The model's data beyond its variables that an FMU state must carry
  * (the event log's reference and the event guard): INTERNAL(name, field, type). */
 #define MODEL_INTERNALS(INTERNAL)                         \
-    ROD_RECORD_INTERNALS(INTERNAL)                        \
+    CONTACT_RECORD_INTERNALS(INTERNAL)                        \
     INTERNAL("step_mean_F_N", step_mean[MEAN_F_N], REAL)  \
     INTERNAL("step_mean_F_T", step_mean[MEAN_F_T], REAL)  \
     INTERNAL("step_vy_cm", step_start[MEAN_F_N], REAL)    \
@@ -62,7 +62,7 @@ enum { MEAN_F_N, MEAN_F_T };
 typedef struct {
     RodParams params;
     double x[ROD_NX];
-    RodRecord run;                               /* the mode and what its events recorded */
+    ContactRecord run;                               /* the mode and what its events recorded */
     double step_mean[2];  /* F_N, F_T averaged over the last Co-Simulation step (the impulse / the step) */
     double step_start[2]; /* vy_cm, vx_cm when the step began */
     bool means_held;      /* Co-Simulation: F_N_mean, F_T_mean are step_mean; else (Model Exchange) F_N, F_T */

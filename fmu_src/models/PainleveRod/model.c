@@ -13,7 +13,7 @@ void model_reset(Model *m)
      * paper's linear compliance law (kappa = beta = 0). */
     *m = (Model){ .params = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3, .kappa = 0, .beta = 0 },
                   .x = { [ROD_X] = 0, [ROD_V] = 1, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 0.5 },
-                  .run = rod_record_new(),
+                  .run = contact_record_new(),
                   .stale = true,
                   .partials_stale = true };
 }
@@ -110,7 +110,7 @@ void model_start(Model *m, double time, char *text, size_t size)
 {
     rod_record_start(&m->run, &m->params, m->x, time);
     model_touch(m);
-    rod_record_describe_start(&m->run, text, size);
+    contact_record_describe_start(&m->run, text, size);
 }
 
 void model_begin_integration(Model *m)
@@ -189,5 +189,5 @@ const char *model_internals_implausible(const Model *m)
 {
     for (int i = 0; i < 2; ++i)
         if (!isfinite(m->step_mean[i]) || !isfinite(m->step_start[i])) return "step_mean_F_N";
-    return rod_record_implausible(&m->run);
+    return contact_record_implausible(&m->run);
 }

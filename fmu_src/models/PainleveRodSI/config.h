@@ -48,14 +48,14 @@
     VARIABLE(VY_CM, "vy_cm", REAL, CALCULATED, out[SI_VY_CM], 0, 0)                                \
     VARIABLE(GAP, "gap", REAL, CALCULATED, out[SI_GAP], 0, 0)                                      \
     VARIABLE(SLIP, "slip", REAL, CALCULATED, out[SI_SLIP], 0, 0)                                   \
-    ROD_RECORD_TIMES(VARIABLE)                                                                     \
-    ROD_RECORD_MODES(VARIABLE)                                                                     \
+    CONTACT_RECORD_TIMES(VARIABLE)                                                                     \
+    CONTACT_RECORD_MODES(VARIABLE)                                                                     \
     VARIABLE(F_N_MEAN, "F_N_mean", REAL, CALCULATED, out[SI_F_N_MEAN], 0, 0)                       \
     VARIABLE(F_T_MEAN, "F_T_mean", REAL, CALCULATED, out[SI_F_T_MEAN], 0, 0)                       \
-    ROD_COEFFICIENT_VARIABLES(VARIABLE, out, SI_A)
+    CONTACT_COEFFICIENT_VARIABLES(VARIABLE, out, SI_A)
 
 #define MODEL_INTERNALS(INTERNAL)                             \
-    ROD_RECORD_INTERNALS(INTERNAL) \
+    CONTACT_RECORD_INTERNALS(INTERNAL) \
     INTERNAL("v_floor_decided", v_floor_decided, REAL)    \
     INTERNAL("time", time, REAL)                          \
     INTERNAL("t_floor", t_floor, REAL)                    \
@@ -80,7 +80,7 @@ typedef struct {
     double m, l, J, g, k, c, mu;
     double y_floor, w_floor, v_floor, F_x, F_y, tau;
     double x[ROD_NX];
-    RodRecord run;
+    ContactRecord run;
     double v_floor_decided; /* the belt speed the mode was last decided for */
     double time;            /* the instance's (model_set_time) */
     double t_floor;         /* when y_floor was last set: in Co-Simulation the floor moves on at w_floor */

@@ -89,7 +89,7 @@ void model_reset(Model *m)
      * epsilon ~ 1e-3, delta ~ 1, the paper's Theorem 1 regime. */
     *m = (Model){ .m = 1, .l = 0.5, .J = 1.0 / 12, .g = 9.81, .k = 2e7, .c = 4500, .mu = 3,
                   .x = { [ROD_X] = 0, [ROD_V] = 2, [ROD_Y] = 0, [ROD_W] = 0, [ROD_THETA] = 1, [ROD_PHI] = 2 },
-                  .run = rod_record_new(),
+                  .run = contact_record_new(),
                   .stale = true,
                   .partials_stale = true };
 }
@@ -240,7 +240,7 @@ void model_start(Model *m, double time, char *text, size_t size)
     m->v_floor_decided = m->v_floor;
     m->time = m->t_floor = time;   /* the floor is where y_floor says at the start */
     model_touch(m);
-    rod_record_describe_start(&m->run, text, size);
+    contact_record_describe_start(&m->run, text, size);
 }
 
 void model_begin_integration(Model *m)
@@ -303,5 +303,5 @@ const char *model_internals_implausible(const Model *m)
     if (!isfinite(m->step_mean[SI_MEAN_F_N])) return "step_mean_F_N";
     if (!isfinite(m->step_mean[SI_MEAN_F_T])) return "step_mean_F_T";
     if (!isfinite(m->step_start[SI_MEAN_F_N]) || !isfinite(m->step_start[SI_MEAN_F_T])) return "step_vy_cm";
-    return rod_record_implausible(&m->run);
+    return contact_record_implausible(&m->run);
 }
