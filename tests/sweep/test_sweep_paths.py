@@ -24,7 +24,7 @@ def sweep(path, fmu_path, **how):
 
 
 def test_every_path_of_a_sweep_gives_the_rows_of_one_serial_chunk_bit_for_bit(fmu_path, tmp_path, monkeypatch):
-    monkeypatch.setattr(plan, "cores", lambda: 2)          # the decision as on a 2-core machine
+    monkeypatch.setattr(plan, "free_cores", lambda: 2.0)   # the decision as on an idle 2-core machine
     serial, _ = sweep(tmp_path / "serial.parquet", fmu_path, serial=True, batch=48)
     here, said_here = sweep(tmp_path / "here.csv", fmu_path, batch=5, start_up=math.inf)
     cluster, said_cluster = sweep(tmp_path / "cluster.parquet", fmu_path, batch=7, start_up=0.0)
@@ -38,15 +38,24 @@ def test_every_path_of_a_sweep_gives_the_rows_of_one_serial_chunk_bit_for_bit(fm
 
 
 def test_the_cluster_only_when_it_finishes_sooner_despite_its_start_up(monkeypatch):
-    monkeypatch.setattr(plan, "cores", lambda: 2)
+    monkeypatch.setattr(plan, "free_cores", lambda: 2.0)
     # On two workers after 4 s of start-up: 4 + T/2 < T beyond T = 8 s of work in one process.
     assert not plan.cluster_pays(120e-6, 10_000, 2, start_up=4.0)          # 1.2 s
     assert not plan.cluster_pays(100e-6, 79_000, 2, start_up=4.0)          # 7.9 s
     assert plan.cluster_pays(100e-6, 81_000, 2, start_up=4.0)              # 8.1 s
     assert not plan.cluster_pays(100e-6, 79_000, 8, start_up=4.0)          # 8 workers share 2 cores: as 2
     assert not plan.cluster_pays(100e-6, 81_000, 1, start_up=0.0)          # one worker is no faster
-    monkeypatch.setattr(plan, "cores", lambda: 1)
+    monkeypatch.setattr(plan, "free_cores", lambda: 1.0)   # one core, or two with another job on one
     assert not plan.cluster_pays(1e-3, 10**7, 8, start_up=4.0)
+    monkeypatch.setattr(plan, "free_cores", lambda: 1.5)   # half a core more: 4 + T/1.5 < T beyond T = 12 s
+    assert not plan.cluster_pays(1e-4, 119_000, 2, start_up=4.0) and plan.cluster_pays(1e-4, 121_000, 2, start_up=4.0)
+
+
+def test_the_free_cores_are_the_cores_less_the_load_of_other_processes(monkeypatch):
+    monkeypatch.setattr(plan, "cores", lambda: 2)
+    for load, free in ((0.3, 2.0), (1.0, 2.0), (1.5, 1.5), (4.0, 1.0)):
+        monkeypatch.setattr(plan.os, "getloadavg", lambda load=load: (load, load, load))
+        assert plan.free_cores() == free
 
 
 @pytest.mark.parametrize("cases, workers, per_case, batch, size", [
