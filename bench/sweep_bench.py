@@ -1,6 +1,7 @@
 """The harness's sweep, timed side by side: N random Theorem 1 cases through
 Co-Simulation (the harness's fastest path), by main's path before issue #28's
-plan (a local dask cluster of 2 worker processes, tasks of 200 cases) and by
+plan (a local dask cluster of 2 worker processes, tasks of 200 cases: main's
+defaults, which run_sweep(workers=2, batch=200) runs through the same loop) and by
 today's (sweep.plan: the first chunk in this process, the rest here unless a
 cluster finishes it sooner; on a cluster, a few large chunks per worker).
 
@@ -16,6 +17,7 @@ dask.distributed, the cluster's start and close included, except in the first
 row, which starts the cluster before the clock as the figures of 7.7 s (issue #28)
 and 13.3 -> 4.7 s were measured."""
 import json
+import os
 import pathlib
 import statistics
 import subprocess
@@ -75,6 +77,7 @@ def fresh(fmu, n, path):
 def sweep_table(fmu, n=10_000, large=100_000):
     """Markdown lines: every path at n cases (alternating, REPEATS each), today's default at n/4 and
     at `large` (where the cluster pays), each run in a fresh process."""
+    load = os.getloadavg()[0]
     runs = {p: [] for p in PATHS}
     for _ in range(REPEATS):
         for p in PATHS:
@@ -83,8 +86,8 @@ def sweep_table(fmu, n=10_000, large=100_000):
     main = statistics.median(r["seconds"] for r in runs["main"])
     started = statistics.median(r["seconds"] for r in runs["main-started"])
     lines = [f"`painleve.sweep.run.run_sweep`, random Theorem 1 cases {SPEC}, Co-Simulation fast loop, on this 2-core "
-             f"machine; each run a fresh process, the paths alternating, the median of {REPEATS} at {n:,} cases "
-             "(one run at the other sizes).", "",
+             f"machine (load average {load:.1f} at the start); each run a fresh process, the paths "
+             f"alternating, the median of {REPEATS} at {n:,} cases (one run at the other sizes).", "",
              "| cases | path | where it ran | seconds | cases/s | vs main's, started before | vs main's | vs 7.7 s "
              "| driver peak MiB |", "|---|---|---|---|---|---|---|---|---|"]
     for results, p in rows:
@@ -110,10 +113,10 @@ WHERE_THE_TIME_GOES = (
     "themselves: a serial sweep of the same 10,000 cases took {plain:.2f} s in the same run; under cProfile "
     "({total:.2f} s, which inflates Python's share and not C's): {shares}. The FMU's own integration is the "
     "smaller part; the larger is Python around it, per case: fmpy's wrappers of 11 FMI calls, the fast loop "
-    "reading the FMU's record and building the Outcome, the row. What would go further: a process pool "
-    "forked from the driver (no imports, no cluster: start-up of milliseconds) on the free cores, and fewer "
+    "reading the FMU's record and building the Outcome, the row. What would go further: fewer "
     "Python calls per case (the FMI calls through ctypes directly, the outcome from the record without a "
-    "dataclass per case).")
+    "dataclass per case); a pool forked from the driver gains only on free cores: at load 4.6, 2 forked "
+    "processes ran the 10,000 cases in 3.9-4.0 s where this process took 3.6-4.0 s.")
 
 
 def profile(fmu, n):
