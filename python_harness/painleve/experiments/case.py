@@ -39,8 +39,9 @@ class Case:
                     x=0.0, v=self.v0, y=0.0, w=self.epsilon * self.w10, theta=self.theta0, phi=self.phi0)
 
 
-def horizon(case):
+def horizon(case, prediction=None):
     """Where a run of the case that has not returned to the floor is given up: in fast time
     tau = t/eps the IWC takes ln(1/eps)/lambda_+ to compress and O(1 + delta) to stick and
-    lift off, so eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta))."""
-    return case.epsilon * (10 * math.log(1 / case.epsilon) / predict(case).lambda_plus + 50 * (1 + case.delta))
+    lift off, so eps (10 ln(1/eps)/lambda_+ + 50 (1 + delta)). `prediction`: predict(case), if known."""
+    lambda_plus = (prediction or predict(case)).lambda_plus
+    return case.epsilon * (10 * math.log(1 / case.epsilon) / lambda_plus + 50 * (1 + case.delta))

@@ -24,6 +24,8 @@ STEP_IN_EPSILONS = 4
 # instant, apart by rounding (up to 1e-6 eps seen at eps = 1e-2); a wrong root would be O(eps) away.
 ROUNDING_SLACK = 1e-4
 RECORD = ("t_stick_begin", "t_stick_end", "t_contact_begin", "t_contact_end")
+READ = RECORD + STATE_AT_RETURN      # what the loop reads after each doStep (cs_calls)
+_CONTACT_END, _Y = READ.index("t_contact_end"), READ.index("y")
 
 
 def switches_from_record(start, record, sticks):
@@ -68,39 +70,36 @@ def record_tells(start, record, state, contact, switches, sticks):
     return switches == len(switches_from_record(start, record, sticks)) - 1
 
 
-def first_step(case):
+def first_step(case, prediction=None):
     """The first communication step: past the end of contact, before the rod can land again. The
     contact lasts at most 1.43 eps (ln(1/eps)/lambda_+ + 1 + delta) on the validation's and the
     benchmark's cases (the compression's ln(1/eps)/lambda_+ in fast time, then O(1 + delta) to
-    stick and lift off); twice that, within the horizon."""
-    estimate = case.epsilon * (math.log(1 / case.epsilon) / predict(case).lambda_plus + 1 + case.delta)
+    stick and lift off); twice that, within the horizon. `prediction`: predict(case), if known."""
+    lambda_plus = (prediction or predict(case)).lambda_plus
+    estimate = case.epsilon * (math.log(1 / case.epsilon) / lambda_plus + 1 + case.delta)
     return 2 * estimate if math.isfinite(estimate) else STEP_IN_EPSILONS * case.epsilon
 
 
-def run_stepped(experiment, case, first=None):
+def run_stepped(experiment, case, first=None, prediction=None):
     """The case through a first doStep of `first` (default STEP_IN_EPSILONS * eps), then
     STEP_IN_EPSILONS * eps at a time, the record read after each, to the first communication
     point after the rod has left the floor and is back above it. With `first`: its Outcome if
-    the record tells it there (record_tells), else None."""
-    settings = experiment.settings(case)
+    the record tells it there (record_tells), else None. `prediction`: predict(case), if known."""
+    settings = experiment.settings(case, prediction)
     h, stop = STEP_IN_EPSILONS * case.epsilon, settings["stop_time"]
-    vr = experiment.vr
-    names = RECORD + STATE_AT_RETURN
-    with experiment.fresh_run(case) as instance:
-        experiment.start(case, settings["relative_tolerance"])
-        start = (0.0, *experiment.contact_and_mode())
+    calls = experiment.cs_calls
+    with experiment.fresh_run(case, calls):
+        start = (0.0, *calls.start(case.start_values(), settings["relative_tolerance"]))
         t, step = 0.0, min(first or h, stop)
         while t < stop:
-            instance.doStep(t, step)
+            values = calls.step(t, step)
             t, step = t + step, h
-            values = dict(zip(names, instance.getReal([vr[k] for k in names])))
-            if values["t_contact_end"] > 0 and values["y"] >= 0:
+            if values[_CONTACT_END] > 0 and values[_Y] >= 0:
                 break                                 # left the floor, and back above it
         else:
             raise no_return(case, stop)
-        switches, sticks = instance.getInteger([vr["switches"], vr["sticks"]])
-        contact = bool(instance.getBoolean([vr["contact"]])[0])
-    record, state = {k: values[k] for k in RECORD}, {k: values[k] for k in STATE_AT_RETURN}
+        switches, sticks, contact = calls.end()
+    record, state = dict(zip(RECORD, values)), dict(zip(STATE_AT_RETURN, values[len(RECORD):]))
     if first is not None and not record_tells(start, record, state, contact, switches, sticks):
         return None
     back = run_back(state)
@@ -111,8 +110,10 @@ def run_stepped(experiment, case, first=None):
     return _outcome(case, start, t, record, back, switches, sticks)
 
 
-def run_co_simulation(experiment, case):
+def run_co_simulation(experiment, case, prediction=None):
     """One case through Co-Simulation, reduced to its Outcome (events: the FMU's switches): one long
-    first step where the record tells the outcome after it, else the case again, stepped."""
+    first step where the record tells the outcome after it, else the case again, stepped.
+    `prediction`: predict(case), if known."""
     case.check()
-    return run_stepped(experiment, case, first=first_step(case)) or run_stepped(experiment, case)
+    return (run_stepped(experiment, case, first_step(case, prediction), prediction)
+            or run_stepped(experiment, case, prediction=prediction))

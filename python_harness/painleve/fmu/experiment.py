@@ -26,6 +26,7 @@ through either interface, so the solver's error stays below the theorem's
 O(eps ln 1/eps). Euler (through simulate_fmu) steps once per output interval.
 """
 import contextlib
+import functools
 import importlib.resources
 import shutil
 import tempfile
@@ -39,7 +40,8 @@ from ..experiments.case import Case, horizon
 from ..experiments import interrupt
 from ..experiments.outcome import SimulationError, outcome_of_trajectory
 from . import fmi3_adapter
-from .cs_fast_loop import run_co_simulation
+from .cs_calls import DirectCalls, WrapperCalls
+from .cs_fast_loop import READ, run_co_simulation
 from .me_fast_loop import run_model_exchange
 
 
@@ -76,7 +78,7 @@ class Experiment:
     study of thousands of runs pays the unzip and the load once."""
 
     def __init__(self, fmu_path=None, *, fmi_type="ModelExchange", solver="CVode", relative_tolerance=None,
-                 steps_per_epsilon=100, tmp_dir=None):
+                 steps_per_epsilon=100, tmp_dir=None, direct_calls=True):
         if fmi_type not in FMI_TYPES.values():
             raise ValueError(f"fmi_type must be 'ModelExchange' or 'CoSimulation', not {fmi_type!r}")
         if solver not in ("CVode", "Euler"):
@@ -84,6 +86,7 @@ class Experiment:
         self.fmu_path = str(fmu_path) if fmu_path is not None else default_fmu()
         self.fmi_type, self.solver = fmi_type, solver
         self.relative_tolerance, self.steps_per_epsilon = relative_tolerance, steps_per_epsilon
+        self.direct_calls = direct_calls    # Co-Simulation's calls straight into an FMI 2.0 FMU (cs_calls)
         self.model_description = read_model_description(self.fmu_path)
         self.vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
         self.messages = []      # the current run's log messages (status, category, message)
@@ -136,7 +139,15 @@ class Experiment:
         instance.instantiate(callbacks=callbacks, loggingOn=logging_on)
         return instance
 
+    @functools.cached_property
+    def cs_calls(self):
+        """The Co-Simulation fast loop's FMI calls on the instance (cs_calls): straight into an FMI 2.0
+        FMU's C functions if `direct_calls`, else (and for FMI 3.0) through fmpy's wrappers."""
+        direct = self.direct_calls and isinstance(self.instance, FMU2Slave)
+        return (DirectCalls if direct else WrapperCalls)(self.instance, self.vr, READ)
+
     def close(self):
+        self.__dict__.pop("cs_calls", None)     # its C functions' component goes with the instance
         try:
             if self.instance is not None:
                 self.instance.freeInstance()
@@ -151,13 +162,13 @@ class Experiment:
         self.close()
 
     @contextlib.contextmanager
-    def fresh_run(self, what):
-        """The instance reset for a new run (after the first); a failure inside raises
-        SimulationError naming `what` and quoting the FMU's first error message (the
+    def fresh_run(self, what, calls=None):
+        """The instance reset (through `calls`, if given) for a new run (after the first); a failure
+        inside raises SimulationError naming `what` and quoting the FMU's first error message (the
         cause: after it the instance is in its Error state and refuses what follows)."""
         interrupt.check()
         if self._used:
-            self.instance.reset()
+            (calls or self.instance).reset()
         self._used = True
         self.messages.clear()
         try:
@@ -184,10 +195,10 @@ class Experiment:
         return (bool(self.instance.getBoolean([self.vr["contact"]])[0]),
                 int(self.instance.getInteger([self.vr["mode"]])[0]))
 
-    def settings(self, case):
+    def settings(self, case, prediction=None):
         """fmpy's solver settings for one case: relative_tolerance (or Euler's step_size),
-        output_interval and stop_time."""
-        stop_time = horizon(case)     # the run stops itself at the return
+        output_interval and stop_time (`prediction`: predict(case), if known)."""
+        stop_time = horizon(case, prediction)     # the run stops itself at the return
         if self.fmi_type == "CoSimulation" or self.solver == "CVode":
             rtol = self.relative_tolerance or min(1e-6, case.epsilon / 100)
             # Through ME the events are recorded exactly and the grid only decides when the
@@ -240,11 +251,12 @@ class Experiment:
                 raise SimulationError(f"{what}: the FMU returned a non-finite {name}")
         return r
 
-    def run(self, case):
-        """One IWC case, reduced to its Outcome. (The Model Exchange fast loop drives fmpy's CVode
-        with FMI 2.0 calls; an FMI 3.0 FMU's Model Exchange runs are its simulate_fmu trajectories.)"""
+    def run(self, case, prediction=None):
+        """One IWC case, reduced to its Outcome (`prediction`: predict(case), if known: a sweep's, made
+        over its batch's arrays). (The Model Exchange fast loop drives fmpy's CVode with FMI 2.0
+        calls; an FMI 3.0 FMU's Model Exchange runs are its simulate_fmu trajectories.)"""
         if self.fmi_type == "CoSimulation":
-            return run_co_simulation(self, case)
+            return run_co_simulation(self, case, prediction)
         if self.solver == "CVode" and self.model_description.fmiVersion == "2.0":
             return run_model_exchange(self, case)
         return outcome_of_trajectory(case, self.simulate(case))

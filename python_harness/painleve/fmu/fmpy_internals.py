@@ -1,10 +1,12 @@
 """The internals of fmpy 0.3.32 (pinned in requirements.txt) that the Model
-Exchange loops use (me_fast_loop, si_experiment), and nothing else of fmpy's private code does:
+Exchange loops (me_fast_loop, si_experiment) and the Co-Simulation loop's direct calls
+(cs_calls) use, and nothing else of fmpy's private code does:
 
 - FMU2Model._functions: the FMU's C functions as fmpy typed them, so that
   CVode's right-hand side calls fmi2SetTime ... fmi2GetDerivatives directly
   instead of through fmpy's Python wrappers (a status check and a call logger
-  in Python for each of three calls per right-hand side cost more than the model);
+  in Python for each of three calls per right-hand side cost more than the model; the same
+  for a Co-Simulation case's 11 calls);
 - the serial N_Vector's content struct, to reach a vector's data without
   fmpy's two casts per access (the callbacks' hottest line);
 - fmpy's handle on its CVODE library, for CVodeGetNumSteps and CVodeSetStopTime (which
@@ -29,7 +31,13 @@ cvode_set_stop_time.argtypes, cvode_set_stop_time.restype = [c_void_p, c_double]
 def c_functions(instance):
     """(fmi2SetTime, fmi2SetContinuousStates, fmi2GetDerivatives, fmi2GetEventIndicators) of an
     instantiated fmpy FMU2Model, as ctypes functions taking the component first."""
-    return tuple(instance._functions[name] for name in FUNCTIONS)
+    return fmi2_functions(instance, FUNCTIONS)
+
+
+def fmi2_functions(instance, names):
+    """The FMI 2.0 C functions `names` of an instantiated fmpy FMU2Model or FMU2Slave, as fmpy typed
+    them (argtypes, restype), taking the component first."""
+    return tuple(instance._functions[name] for name in names)
 
 
 def vector_data(vector):

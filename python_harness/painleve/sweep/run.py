@@ -21,7 +21,7 @@ import sys
 import tempfile
 import threading
 import time
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -91,31 +91,45 @@ def predictions(case):
                 predicts_iwc=p.iwc, time_scale=p.time_scale)
 
 
-def case_row(experiment, case, case_id):
-    """One result row: the case, what the FMU did (status 'ok'), or why it did not run
-    ('outside' the theorems' hypotheses, or 'failed' with the FMU's reason)."""
-    row = {"id": case_id, **{f.name: getattr(case, f.name) for f in fields(case)}, **predictions(case), "status": "ok",
-           "message": ""}
+# A row's outcome columns (store.COLUMNS, iwc to events) for a case that did not run: missing.
+NOT_RUN = (None,) + (float("nan"),) * 9 + (None,)
+
+
+def case_row(experiment, case, case_id, p):
+    """One result row, a tuple in store.COLUMNS' order: the case, its predictions `p` (predict's),
+    what the FMU did (status 'ok'), or why it did not run ('outside' the theorems' hypotheses, or
+    'failed' with the FMU's reason)."""
     try:
         case.check()
     except an.HypothesisError as err:
-        return {**row, "status": "outside", "message": str(err)}
+        return _row(case_id, "outside", str(err), case, p, None)
     try:
-        outcome = experiment.run(case)
+        outcome = experiment.run(case, p)
     except SimulationError as err:
-        return {**row, "status": "failed", "message": str(err)}
+        return _row(case_id, "failed", str(err), case, p, None)
     except Exception as err:   # one bad case must not lose its batch
-        return {**row, "status": "failed", "message": f"{type(err).__name__}: {err}"}
-    return {**row, **outcome.as_row(), "status": "ok"}
+        return _row(case_id, "failed", f"{type(err).__name__}: {err}", case, p, None)
+    return _row(case_id, "ok", "", case, p, outcome)
+
+
+def _row(case_id, status, message, c, p, o):
+    """The row's tuple; the errors as Outcome's (w/v0 - e, phi - predicted phi, theta - theta0)."""
+    head = (case_id, status, message, c.theta0, c.phi0, c.delta, c.epsilon, c.v0, c.w10, c.alpha, c.mu, p.theorem)
+    predicted = (p.e, p.e * c.v0, p.phi, p.w1_star, p.iwc)
+    if o is None:
+        return head + NOT_RUN + predicted + (float("nan"),) * 3 + (p.time_scale,)
+    return head + (o.iwc, o.w, o.theta, o.phi, o.v, o.t_return, o.compression, o.stick, o.lift_off, o.flight_back,
+                   o.events) + predicted + (o.w / c.v0 - p.e, o.phi - p.phi, o.theta - c.theta0, p.time_scale)
 
 
 def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
-    """A batch of cases, on whichever process runs it: a typed DataFrame of rows."""
+    """A batch of cases, on whichever process runs it: a typed DataFrame of rows. The predictions are
+    the batch's over arrays (predict_many), handed to each case's run and row."""
     with _IN_USE:
         experiment = experiment_for(blob, fmi_type, tmp_dir)
-        cases = list(spec.cases(ids))
-        predict_many(cases)     # the batch's predictions over arrays, in predict's cache for the rows
-        return as_frame([case_row(experiment, case, int(i)) for i, case in zip(ids, cases)])
+        cases = spec.cases(ids)
+        return as_frame([case_row(experiment, case, i, p)
+                         for i, case, p in zip(np.asarray(ids).tolist(), cases, predict_many(cases))])
 
 
 @dataclass

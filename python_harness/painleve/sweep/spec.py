@@ -177,8 +177,9 @@ class SweepSpec:
         return {a.name: a.sample(u[:, k]) for k, a in enumerate(self.axes)}
 
     def cases(self, ids):
-        cols = self.columns(ids)
-        return [Case(**{p: float(cols[p][k]) for p in PARAMS}) for k in range(len(ids))]
+        cols = self.columns(ids)     # as Python floats (tolist), in Case's order of fields
+        return [Case(*values) for values in zip(*(np.asarray(cols[f.name], dtype=float).tolist()
+                                                     for f in fields(Case)))]
 
     def describe(self):
         """The identity of a sweep: what a resumed run must match."""

@@ -36,7 +36,7 @@ class StoreError(ValueError):
 
 
 def as_frame(rows):
-    """Rows (dicts) as a DataFrame with exactly COLUMNS, in order and typed."""
+    """Rows (tuples in COLUMNS' order, or dicts) as a DataFrame with exactly COLUMNS, in order and typed."""
     df = pd.DataFrame(rows, columns=list(COLUMNS))
     return df.astype(COLUMNS)
 

@@ -1,0 +1,104 @@
+"""The FMI calls of one Co-Simulation case, in the four steps cs_fast_loop takes: reset,
+start (set-up, start values, initialization, the contact and mode there), a doStep and the
+values read after it, and the FMU's counts at the end.
+
+`WrapperCalls` makes them through fmpy's wrappers of the instance (any instance the harness
+makes: FMI 2.0, or FMI 3.0 under fmi3_adapter). `DirectCalls` makes the same FMI 2.0 calls
+with the same arguments straight into the FMU's C functions, as fmpy typed them
+(fmpy_internals), with the value references' arrays made once per instance: fmpy's wrappers
+build two ctypes arrays and check a status in Python for each call, 11 a case, which cost a
+sweep's case about as much as the FMU's own integration (issue #28). The values are the
+same floats either way (tests/fmu/test_cs_calls.py); a status above fmi2Warning raises
+fmpy's own FMICallException, so a failure reads the same."""
+from ctypes import c_double, c_int, c_uint
+
+from fmpy.fmi1 import FMICallException
+
+from .fmpy_internals import fmi2_functions
+
+FMI2_WARNING = 1
+FMI2_TRUE = 1
+
+
+class WrapperCalls:
+    """The case's FMI calls through fmpy's wrappers of `instance`; `read`: the Real variables read
+    after each doStep."""
+
+    def __init__(self, instance, vr, read):
+        self.instance, self.vr = instance, vr
+        self.read_vr = [vr[k] for k in read]
+
+    def reset(self):
+        self.instance.reset()
+
+    def start(self, start_values, relative_tolerance):
+        """Sets up and initializes the instance with `start_values` ({name: value}); (contact, mode) there."""
+        instance, vr = self.instance, self.vr
+        instance.setupExperiment(tolerance=relative_tolerance, startTime=0.0)
+        instance.setReal([vr[k] for k in start_values], list(start_values.values()))
+        instance.enterInitializationMode()
+        instance.exitInitializationMode()
+        return bool(instance.getBoolean([vr["contact"]])[0]), int(instance.getInteger([vr["mode"]])[0])
+
+    def step(self, t, h):
+        """fmi2DoStep(t, h); the values of `read` after it, as a list."""
+        self.instance.doStep(t, h)
+        return self.instance.getReal(self.read_vr)
+
+    def end(self):
+        """(switches, sticks, contact) now."""
+        switches, sticks = self.instance.getInteger([self.vr["switches"], self.vr["sticks"]])
+        return switches, sticks, bool(self.instance.getBoolean([self.vr["contact"]])[0])
+
+
+NAMES = ("fmi2Reset", "fmi2SetupExperiment", "fmi2SetReal", "fmi2EnterInitializationMode",
+         "fmi2ExitInitializationMode", "fmi2GetBoolean", "fmi2GetInteger", "fmi2DoStep", "fmi2GetReal")
+
+
+class DirectCalls:
+    """The same calls on an instantiated fmpy FMU2Slave, straight into its C functions."""
+
+    def __init__(self, instance, vr, read):
+        self.component = instance.component
+        (self._reset, self._setup, self._set_real, self._enter, self._exit, self._get_boolean, self._get_integer,
+         self._do_step, self._get_real) = fmi2_functions(instance, NAMES)
+        self.vr = vr
+        self._start_vr = {}                     # the start values' names -> their value references' array
+        self._read_vr, self._read = (c_uint * len(read))(*(vr[k] for k in read)), (c_double * len(read))()
+        self._contact_vr, self._mode_vr = (c_uint * 1)(vr["contact"]), (c_uint * 1)(vr["mode"])
+        self._counts_vr = (c_uint * 2)(vr["switches"], vr["sticks"])
+        self._boolean, self._integers = (c_int * 1)(), (c_int * 2)()
+
+    def _check(self, name, status):
+        if status > FMI2_WARNING:                # as fmpy's _call
+            raise FMICallException(function=name, status=status)
+
+    def reset(self):
+        self._check("fmi2Reset", self._reset(self.component))
+
+    def start(self, start_values, relative_tolerance):
+        c, check = self.component, self._check
+        names = tuple(start_values)
+        vr = self._start_vr.get(names)
+        if vr is None:
+            vr = self._start_vr[names] = (c_uint * len(names))(*(self.vr[k] for k in names))
+        check("fmi2SetupExperiment", self._setup(c, FMI2_TRUE, relative_tolerance, 0.0, 0, 0.0))
+        check("fmi2SetReal", self._set_real(c, vr, len(names), (c_double * len(names))(*start_values.values())))
+        check("fmi2EnterInitializationMode", self._enter(c))
+        check("fmi2ExitInitializationMode", self._exit(c))
+        check("fmi2GetBoolean", self._get_boolean(c, self._contact_vr, 1, self._boolean))
+        contact = bool(self._boolean[0])
+        check("fmi2GetInteger", self._get_integer(c, self._mode_vr, 1, self._integers))
+        return contact, int(self._integers[0])
+
+    def step(self, t, h):
+        c = self.component
+        self._check("fmi2DoStep", self._do_step(c, t, h, FMI2_TRUE))
+        self._check("fmi2GetReal", self._get_real(c, self._read_vr, len(self._read_vr), self._read))
+        return self._read[:]
+
+    def end(self):
+        c = self.component
+        self._check("fmi2GetInteger", self._get_integer(c, self._counts_vr, 2, self._integers))
+        self._check("fmi2GetBoolean", self._get_boolean(c, self._contact_vr, 1, self._boolean))
+        return self._integers[0], self._integers[1], bool(self._boolean[0])
