@@ -3,6 +3,8 @@ straight into the FMU's C functions, the batch's predictions over arrays handed 
 row a tuple) against a second, generic one (Experiment.run through fmpy's wrappers, Outcome.as_row
 and predict's columns, a dict a row), for random cases that run, fall outside the theorems'
 hypotheses, or fail; and the rows carry the physics: w at the return on Theorem 1's e."""
+from dataclasses import asdict
+
 import numpy as np
 import pandas as pd
 
@@ -30,9 +32,9 @@ def generic_rows(fmu_path, ids):
                 case.check()
                 row.update(experiment.run(case).as_row(), status="ok", message="")
             except an.HypothesisError as err:
-                row.update(vars(case), status="outside", message=str(err))
+                row.update(asdict(case), status="outside", message=str(err))
             except SimulationError as err:
-                row.update(vars(case), status="failed", message=str(err))
+                row.update(asdict(case), status="failed", message=str(err))
             rows.append(row)
     return as_frame(rows)
 

@@ -24,7 +24,8 @@ def mixed_cases():
 def test_predict_many_is_predict_case_by_case(monkeypatch):
     cases = mixed_cases()
     seeded = []
-    monkeypatch.setattr(an, "seed_predictions", lambda p: (seeded.extend(p), an._SEEDED.update(p)))
+    seed = an.seed_predictions
+    monkeypatch.setattr(an, "seed_predictions", lambda p: (seeded.extend(p), seed(p)))
     an.predict.cache_clear()
     many = predict_many(cases)
     an.predict.cache_clear()

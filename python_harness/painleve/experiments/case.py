@@ -28,6 +28,17 @@ class Case:
     kappa: float = 0.0    # the compliance law's stiffening (0: the paper's linear law, docs/nonlinear_compliance.md)
     beta: float = 0.0     # its damping growth with penetration
 
+    def __hash__(self):
+        """The dataclass's hash (of the fields' tuple), computed once: a sweep looks each case up in
+        the predictions' caches several times, and hashing ten floats is a few us (issue #28)."""
+        try:
+            return self.__dict__["_hash"]
+        except KeyError:
+            value = hash((self.theta0, self.phi0, self.v0, self.delta, self.epsilon, self.w10, self.alpha, self.mu,
+                          self.kappa, self.beta))
+            object.__setattr__(self, "_hash", value)
+            return value
+
     def check(self):
         """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""
         check_case(self)

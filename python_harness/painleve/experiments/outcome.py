@@ -117,22 +117,23 @@ def flight_back_to_floor(state):
     # Written as increments from `state` (sin(th + ph s) - sin th = 2 cos(th + ph s/2) sin(ph s/2)):
     # at a return with w = O(eps) the height's O(1) terms would cancel to a rounding error of
     # 1e-16 / w in the time, O(1e-10) at eps = 1e-6 (issue #28).
-
-    def height(s):
-        half = ph * s / 2
-        return y + w * s - s * s / 2 + ph * s * math.cos(th) - 2 * math.cos(th + half) * math.sin(half)
-
-    def speed(s):    # d height / ds = w(s)
-        half = ph * s / 2
-        return w - s + 2 * ph * math.sin(th + half) * math.sin(half)
+    # height(s) = y + w s - s^2/2 + ph s cos th - 2 cos(th + ph s/2) sin(ph s/2), and its derivative
+    # speed(s) = w(s) = w - s + 2 ph sin(th + ph s/2) sin(ph s/2), written out in the loop (a sweep
+    # runs it for every case).
+    cos_th = math.cos(th)
     s = -y / w
     for _ in range(20):   # Newton from the straight-line guess; the root is simple (w > 0)
-        step = height(s) / speed(s)
+        half = ph * s / 2
+        sin_half = math.sin(half)
+        step = (y + w * s - s * s / 2 + ph * s * cos_th - 2 * math.cos(th + half) * sin_half) / \
+            (w - s + 2 * ph * math.sin(th + half) * sin_half)
         s -= step
         if abs(step) <= 1e-14:    # height's round-off (~1e-16) over w: s is then exact
             break
     half = ph * s / 2
-    return s, dict(w=speed(s), v=v - 2 * ph * math.cos(th + half) * math.sin(half), theta=th + ph * s, phi=ph)
+    sin_half = math.sin(half)
+    return s, dict(w=w - s + 2 * ph * math.sin(th + half) * sin_half, v=v - 2 * ph * math.cos(th + half) * sin_half,
+                   theta=th + ph * s, phi=ph)
 
 
 def _first(mask, start=0):

@@ -13,6 +13,7 @@ second contact, a switch the record does not keep, the rod still below the
 floor) the case runs again stepped: a doStep STEP_IN_EPSILONS * eps at a time,
 the record read after each, until the rod has left the floor and is back above it."""
 import math
+from operator import itemgetter
 
 from ..experiments.outcome import (SLIP_BACKWARD, STATE_AT_RETURN, STICK, flight_back_to_floor, no_return,
                                    outcome_from_switches)
@@ -43,15 +44,16 @@ def switches_from_record(start, record, sticks):
             switches.append((record["t_stick_end"], True, SLIP_BACKWARD))
     if record["t_contact_end"] > t0:
         switches.append((record["t_contact_end"], False, SLIP_BACKWARD))
-    return sorted(switches, key=lambda s: s[0])
+    return sorted(switches, key=itemgetter(0))
 
 
-def _outcome(case, start, t, record, back, switches, sticks):
-    """The Outcome of a run seen at t, back on the floor at t + s in state back (s, back: run_back)."""
+def _outcome(case, t, implied, back, switches):
+    """The Outcome of a run seen at t with the switches `implied` by its record, back on the floor at
+    t + s in state back (s, back: run_back)."""
     s, state = back
     # The return's time from the closed form may fall a rounding error before the lift-off
     # (delta = 0: they are one instant), so no switch is put after it.
-    history = [(min(ts, t + s), contact, mode) for ts, contact, mode in switches_from_record(start, record, sticks)]
+    history = [(min(ts, t + s), contact, mode) for ts, contact, mode in implied]
     return outcome_from_switches(case, history, t + s, state, events=switches)
 
 
@@ -60,14 +62,15 @@ def run_back(state):
     return flight_back_to_floor(state) if state["y"] > 0 else (0.0, state)
 
 
-def record_tells(start, record, state, contact, switches, sticks):
+def record_tells(start, record, state, contact, switches, sticks, implied=None):
     """Whether a run seen in this state is one whose outcome the record gives: out of contact, above
     the floor and rising (so the closed form run back finds the last return) after its contact,
     and every switch the FMU counted in the history the record implies (a second contact, or a
-    switch the record keeps no time of, would make the count exceed it)."""
+    switch the record keeps no time of, would make the count exceed it). `implied`:
+    switches_from_record(start, record, sticks), if made."""
     if contact or state["y"] < 0 or state["w"] <= 0 or record["t_contact_end"] <= start[0] or sticks > 1:
         return False
-    return switches == len(switches_from_record(start, record, sticks)) - 1
+    return switches == len(implied or switches_from_record(start, record, sticks)) - 1
 
 
 def first_step(case, prediction=None):
@@ -100,14 +103,15 @@ def run_stepped(experiment, case, first=None, prediction=None):
             raise no_return(case, stop)
         switches, sticks, contact = calls.end()
     record, state = dict(zip(RECORD, values)), dict(zip(STATE_AT_RETURN, values[len(RECORD):]))
-    if first is not None and not record_tells(start, record, state, contact, switches, sticks):
+    implied = switches_from_record(start, record, sticks)
+    if first is not None and not record_tells(start, record, state, contact, switches, sticks, implied):
         return None
     back = run_back(state)
     # With `first`, the return must follow the lift-off (delta = 0: be one instant with it, within
     # the closed form's rounding): a root of the run back before it would be in the contact.
     if first is not None and t + back[0] < record["t_contact_end"] - ROUNDING_SLACK * case.epsilon:
         return None
-    return _outcome(case, start, t, record, back, switches, sticks)
+    return _outcome(case, t, implied, back, switches)
 
 
 def run_co_simulation(experiment, case, prediction=None):

@@ -219,7 +219,9 @@ _SEEDED, _INSIDE = {}, set()    # a batch's predictions over arrays (predict_man
 
 def seed_predictions(predictions):
     """{case: Prediction} of one batch's cases inside the hypotheses: predict returns (and caches) these
-    instead of computing them, check_case passes these cases (the last batch's) without checking each."""
+    instead of computing them, check_case passes these cases (the last batch's) without checking each.
+    Only the last batch's are held: one that predict had cached already would stay seeded for ever."""
+    _SEEDED.clear()
     _SEEDED.update(predictions)
     _INSIDE.clear()
     _INSIDE.update(predictions)

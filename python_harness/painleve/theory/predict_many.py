@@ -1,11 +1,14 @@
 """The paper's predictions for many Cases at once (a sweep's batch): analytic.predict's numbers
 with each formula evaluated once over the batch's arrays, not once a case (in numpy on scalars a
 case's prediction costs about 200 us, more than its run through the FMU: issue #28)."""
+from operator import attrgetter
+
 import numpy as np
 
 from . import analytic as an
 
 FIELDS = ("theta0", "phi0", "v0", "delta", "epsilon", "w10", "alpha", "mu")
+_FIELDS_OF = attrgetter(*FIELDS)
 
 
 def predict_many(cases):
@@ -19,11 +22,13 @@ def predict_many(cases):
             groups[an.theorem_of(case)].append(case)
     seeded = {}
     for theorem, group in groups.items():
-        if group and not _all_inside(theorem, group):
+        arrays = _arrays(group) if group else None
+        if group and not _all_inside(theorem, arrays):
             group = [case for case in group if an.hypothesis_failure(case) is None]
+            arrays = _arrays(group) if group else None
         if group:
             try:
-                seeded.update(_over_arrays(theorem, group))
+                seeded.update(_over_arrays(theorem, group, arrays))
             except (ValueError, ArithmeticError):     # as predict's _or_nan: that group case by case
                 pass
     an.seed_predictions(seeded)
@@ -31,13 +36,15 @@ def predict_many(cases):
 
 
 def _arrays(group):
-    return (np.array([getattr(c, k) for c in group], dtype=float) for k in FIELDS)
+    """The group's FIELDS, each a contiguous float array."""
+    table = np.array([_FIELDS_OF(c) for c in group], dtype=float).reshape(len(group), len(FIELDS))
+    return tuple(np.ascontiguousarray(table[:, k]) for k in range(len(FIELDS)))
 
 
-def _all_inside(theorem, group):
-    """Whether every case of the group (all of one theorem) is inside its hypotheses, as check_case
-    asks them, checked over arrays."""
-    th, ph, v0, delta, _, w10, alpha, mu = _arrays(group)
+def _all_inside(theorem, arrays):
+    """Whether every case of a group (all of one theorem; its _arrays) is inside its hypotheses, as
+    check_case asks them, checked over arrays."""
+    th, ph, v0, delta, _, w10, alpha, mu = arrays
     check = an.check_theorem1 if theorem == 1 else an.check_theorem2
     try:
         check(th, ph, v0, alpha=alpha, mu=mu, delta=delta)
@@ -46,9 +53,9 @@ def _all_inside(theorem, group):
     return theorem == 1 or bool(np.all(w10 < 0))
 
 
-def _over_arrays(theorem, group):
-    """{case: Prediction} of cases of one theorem, each formula once over their arrays."""
-    th, ph, v0, delta, eps, w10, alpha, mu = _arrays(group)
+def _over_arrays(theorem, group, arrays):
+    """{case: Prediction} of cases of one theorem (their _arrays), each formula once over their arrays."""
+    th, ph, v0, delta, eps, w10, alpha, mu = arrays
     rod = dict(alpha=alpha, mu=mu)
     e = np.atleast_1d(an.e(delta, th, **rod))
     phi = np.atleast_1d(an.phi_after_iwc(th, ph, v0, delta, e=e, **rod))
