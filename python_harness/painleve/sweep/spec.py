@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from ..experiments.case import RANGES, Case
+from .draws import uniform
 
 PARAMS = ("theta0", "phi0", "delta", "epsilon", "v0", "w10", "alpha", "mu", "kappa", "beta")
 DEFAULTS = {f.name: f.default for f in fields(Case)}
@@ -171,9 +172,9 @@ class SweepSpec:
         if not self.samples:
             index = np.unravel_index(ids, self.shape)
             return {a.name: a.grid()[i] for a, i in zip(self.axes, index)}
-        # One generator per case, seeded by (seed, id): a case's values do not depend on batching.
-        draws = [np.random.default_rng([self.seed, int(i)]).random(len(PARAMS)) for i in ids]
-        u = np.array(draws).reshape(-1, len(PARAMS))
+        # One generator per case, seeded by (seed, id): a case's values do not depend on batching
+        # (draws.uniform: numpy's default_rng([seed, id]).random, over the batch's arrays).
+        u = uniform(self.seed, ids, len(PARAMS))
         return {a.name: a.sample(u[:, k]) for k, a in enumerate(self.axes)}
 
     def cases(self, ids):
