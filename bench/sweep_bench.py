@@ -1,15 +1,18 @@
 """The harness's sweep, timed side by side: N random Theorem 1 cases through
 Co-Simulation (the harness's fastest path), by main's path before issue #28's
-plan (a local dask cluster of 2 worker processes, tasks of 200 cases: main's
-defaults, which run_sweep(workers=2, batch=200) runs through the same loop) and by
+plan (main's own code, MAIN_COMMIT's python_harness, with the FMU built here: a local
+dask cluster of 2 worker processes, tasks of 200 cases, through fmpy's wrappers) and by
 today's (sweep.plan: the first chunk in this process, the rest here unless a
-cluster finishes it sooner; on a cluster, a few large chunks per worker).
+cluster finishes it sooner; on a cluster, a few large chunks per worker; a case's
+FMI calls straight into the FMU, its row a tuple).
 
     .venv/bin/python bench/sweep_bench.py               # prints the markdown table
     .venv/bin/python bench/sweep_bench.py 10000 auto    # one run: one JSON line
     .venv/bin/python bench/sweep_bench.py profile       # where a serial sweep's time goes (cProfile)
 
-Each run is a fresh process, so that its imports, its cluster and its peak memory
+Main's rows run in a Python started with -S and main's code first on PYTHONPATH (the
+editable install's import hook would otherwise load today's), which its cluster's
+workers inherit. Each run is a fresh process, so that its imports, its cluster and its peak memory
 (the driver's high-water mark, VmHWM) are its own; the paths alternate, REPEATS
 times each, and the table gives the median. The clock runs from the call of
 run_sweep to its return, as `painleve sweep` spends it: the import of
@@ -22,18 +25,22 @@ import pathlib
 import statistics
 import subprocess
 import sys
+import sysconfig
+import tarfile
 import tempfile
 import time
 
 SPEC = {"theta0": "0.9:1.2", "epsilon": "1e-5:1e-3:log", "delta": "0:2"}
 REPEATS = 3
 PATHS = {   # name: (what the row says, run_sweep's options)
-    "main-started": ("main's: 2 workers, tasks of 200, cluster started before the clock", dict(batch=200)),
-    "main": ("main's: 2 workers, tasks of 200 (`painleve sweep` on main)", dict(workers=2, batch=200)),
+    "main-started": ("main's code: 2 workers, tasks of 200, cluster started before the clock", dict(batch=200)),
+    "main": ("main's code: 2 workers, tasks of 200 (`painleve sweep` on main)", dict(workers=2, batch=200)),
     "cluster": ("today's on a cluster (`--workers 2`): 8 tasks", dict(workers=2)),
     "auto": ("today's default (sweep.plan)", dict()),
 }
 ISSUE_SECONDS = 7.7     # issue #28's 10,000-case sweep
+MAIN_COMMIT = "cdca957^"    # main before sweep.plan (issue #28): its sweep, its fast loop
+ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def peak_rss_mib():
@@ -68,9 +75,23 @@ def run(fmu, n, path):
                 driver_peak_mib=peak_rss_mib())
 
 
-def fresh(fmu, n, path):
-    out = subprocess.run([sys.executable, __file__, str(n), path, str(fmu)], capture_output=True, text=True,
-                         check=True)
+def main_code(into):
+    """MAIN_COMMIT's python_harness extracted into `into`; its directory."""
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", MAIN_COMMIT, "python_harness"], capture_output=True,
+                             check=True).stdout
+    with tarfile.open(fileobj=__import__("io").BytesIO(archive)) as tar:
+        tar.extractall(into, filter="data")
+    return str(pathlib.Path(into) / "python_harness")
+
+
+def fresh(fmu, n, path, main=None):
+    """One run in a fresh process; with `main` (main_code's directory) main's rows run main's code."""
+    env, flags = None, []
+    if path.startswith("main") and main:
+        site = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]}
+        env, flags = {**os.environ, "PYTHONPATH": os.pathsep.join([main, *sorted(site)])}, ["-S"]
+    out = subprocess.run([sys.executable, *flags, __file__, str(n), path, str(fmu)], capture_output=True, text=True,
+                         check=True, env=env)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -79,9 +100,11 @@ def sweep_table(fmu, n=10_000, large=100_000):
     at `large` (where the cluster pays), each run in a fresh process."""
     load = os.getloadavg()[0]
     runs = {p: [] for p in PATHS}
-    for _ in range(REPEATS):
-        for p in PATHS:
-            runs[p].append(fresh(fmu, n, p))
+    with tempfile.TemporaryDirectory() as tmp:
+        main = main_code(tmp)
+        for _ in range(REPEATS):
+            for p in PATHS:
+                runs[p].append(fresh(fmu, n, p, main))
     rows = [(runs[p], p) for p in PATHS] + [([fresh(fmu, size, "auto")], "auto") for size in (n // 4, large)]
     main = statistics.median(r["seconds"] for r in runs["main"])
     started = statistics.median(r["seconds"] for r in runs["main-started"])
@@ -109,14 +132,20 @@ WHERE_THE_TIME_GOES = (
     "the cluster 0.8-1.6 s, each worker importing the harness and extracting the FMU 1.3 s, closing 0.5 s; "
     "longer on a loaded machine, compare the first two rows), more than the whole sweep takes here, and 2 "
     "workers on 2 cores shared with other jobs rarely halve the rest (sweep.plan counts the cores the load "
-    "average leaves free: at load 4 a 100,000-case sweep stays here). So the rest of the time is the cases "
-    "themselves: a serial sweep of the same 10,000 cases took {plain:.2f} s in the same run; under cProfile "
-    "({total:.2f} s, which inflates Python's share and not C's): {shares}. The FMU's own integration is the "
-    "smaller part; the larger is Python around it, per case: fmpy's wrappers of 11 FMI calls, the fast loop "
-    "reading the FMU's record and building the Outcome, the row. What would go further: fewer "
-    "Python calls per case (the FMI calls through ctypes directly, the outcome from the record without a "
-    "dataclass per case); a pool forked from the driver gains only on free cores: at load 4.6, 2 forked "
-    "processes ran the 10,000 cases in 3.9-4.0 s where this process took 3.6-4.0 s.")
+    "average leaves free). So the time is the cases themselves, and their Python was cut by half: a case's 11 "
+    "FMI calls go straight into the FMU's C functions with arrays made once per instance (fmu/cs_calls.py; "
+    "fmpy's wrappers made two ctypes arrays and a status check in Python per call), the batch's predictions "
+    "over arrays go to each run and row (no cache look-ups per case; a row is a tuple, not a dict and an "
+    "Outcome.as_row), a random batch's draws are numpy's generators over arrays (sweep/draws.py, 0.02 s for "
+    "10,000 cases where a generator per case took 0.15 s), Case hashes once; every row bitwise as before "
+    "(tests/sweep/test_sweep_rows.py). A serial sweep of the same 10,000 cases took {plain:.2f} s in the same "
+    "run; under cProfile ({total:.2f} s, which inflates Python's share and not C's): {shares}. The FMU's C is "
+    "now about half of it (the integrator of issue #28's other branch cuts its doStep further); the rest is the "
+    "fast loop's Python per case (the Outcome's phases from the FMU's record, the closed-form flight run back, "
+    "the run's reset and error context: about 30 us) and the batch's (predictions, DataFrames, Parquet). What "
+    "would go further: the phases and the run back from the record in C (an output of the FMU), or a pool "
+    "forked from the driver, which gains only on free cores (at load 4.6, 2 forked processes ran the 10,000 "
+    "cases no faster than this process).")
 
 
 def profile(fmu, n):
@@ -140,12 +169,13 @@ def profile(fmu, n):
 
     def cum(file, name):
         return sum(v[3] for (f, _, fn), v in stats.items() if f.endswith(file) and fn == name)
-    step, calls = cum("fmi2.py", "fmi2DoStep"), cum("fmi1.py", "_call")
+    step = cum("cs_calls.py", "step")
+    calls = step + sum(cum("cs_calls.py", name) for name in ("reset", "start", "end"))
     loop, row = cum("cs_fast_loop.py", "run_co_simulation"), cum("run.py", "case_row")
-    parts = [("the FMU's fmi2DoStep (its integration, in C)", step),
-             ("fmpy's 10 other FMI calls a case (reset, set-up, values, initialization, reads)", calls - step),
+    parts = [("the FMU's fmi2DoStep and the values read after it (its integration, in C)", step),
+             ("the 10 other FMI calls a case (reset, set-up, start values, initialization, reads)", calls - step),
              ("the fast loop's Python (the Outcome from the FMU's record, the flight run back)", loop - calls),
-             ("the row (the case, predictions, Outcome.as_row)", row - loop),
+             ("the row (its check, its tuple)", row - loop),
              ("the cases rebuilt from (seed, id)", cum("spec.py", "cases")),
              ("the predictions over arrays", cum("predict_many.py", "predict_many")),
              ("the chunks' DataFrames", cum("store.py", "as_frame")),
