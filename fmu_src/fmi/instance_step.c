@@ -170,7 +170,11 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
 }
 #endif
 
-/* Communication points closer than this (relative) are the same point. */
+/* Communication points closer than this (relative) are the same point. It forgives a master's
+ * own arithmetic (t += h rounds by up to half an ulp a step; 1e-12 is 4500 ulps of t, thousands
+ * of steps' drift), the same number of ulps at every t. It is no instant of the physics (the
+ * contact record's is, contact_record.h): the state is not moved, only labelled with the
+ * master's time, and an autonomous body does not see the label. */
 #define SAME_TIME 1e-12
 
 Status instance_step(Instance *in, const char *call, double t, double h, StepPolicy policy, StepEnd *end)

@@ -41,6 +41,7 @@
 #define contact_record_new NAMESPACED(contact_record_new)
 #define contact_record_start NAMESPACED(contact_record_start)
 #define contact_spring_energy NAMESPACED(contact_spring_energy)
+#define contact_time_scale NAMESPACED(contact_time_scale)
 
 /* rod.c, rod_partials.c: the rod, the core's first body */
 #define rod_coefficient_outputs NAMESPACED(rod_coefficient_outputs)

@@ -122,7 +122,7 @@ void model_begin_integration(Model *m)
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     model_update(m);
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, e);
+    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, 1.0, false, e);
     model_touch(m);
     return ok;
 }

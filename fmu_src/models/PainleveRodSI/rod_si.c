@@ -258,7 +258,7 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     /* A belt that changed speed leaves the rod's own velocity as it was. */
     const bool belt_jumped = m->v_floor != m->v_floor_decided;
     m->v_floor_decided = m->v_floor;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, e);
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, sqrt(m->l / m->g), belt_jumped, e);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
