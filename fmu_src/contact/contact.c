@@ -81,7 +81,8 @@ double contact_time_scale(const Contact *c, const double x[])
     const ContactCoeffs k = contact_coeffs(&c->law, &s);
     const Compliance h = contact_compliance(&c->law, s.y, s.w);
     const double P = fmax(fmax(fabs(k.p_plus), fabs(k.p_minus)), fabs(k.S_w));
-    return c->law.epsilon / (P * fabs(h.h_w) + sqrt(P * fabs(h.h_yh)));
+    const double rate = P * fabs(h.h_w) + sqrt(P * fabs(h.h_yh));
+    return rate > 0 ? c->law.epsilon / rate : INFINITY;   /* nothing responds (or a NaN state) */
 }
 
 static double normal_force(const Contact *c, ContactMode m, const BodyState *s)
