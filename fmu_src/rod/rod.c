@@ -150,6 +150,55 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], doub
     return contact_move_off_surfaces(&c, m, x, margin, moved);
 }
 
+/* ------------------------------------------- the free flight in closed form */
+
+RodFlight rod_flight(double length, double ax, double ay, double angular, double t0, const double x0[ROD_NX])
+{
+    RodFlight f = { .length = length, .ax = ax, .ay = ay, .angular = angular, .t0 = t0,
+                    .sin0 = sin(x0[ROD_THETA]), .cos0 = cos(x0[ROD_THETA]) };
+    for (int i = 0; i < ROD_NX; ++i) f.x0[i] = x0[i];
+    return f;
+}
+
+/* The end is the centre plus l (cos theta, -sin theta) (eq coord): with the centre's motion
+ * at constant acceleration and theta = theta0 + phi0 s + angular s^2/2, each state is x0's
+ * plus an increment in which sin theta - sin theta0 = cos0 sin D - 2 sin0 sin^2(D/2) and
+ * cos theta - cos theta0 = -sin0 sin D - 2 cos0 sin^2(D/2) (D = theta - theta0) lose no
+ * digits to cancellation: near the floor y is of order eps^2, its increments too. */
+void rod_flight_at(const RodFlight *f, double t, double x[ROD_NX])
+{
+    const double s = t - f->t0, l = f->length, phi0 = f->x0[ROD_PHI];
+    const double turn = s * (phi0 + 0.5 * f->angular * s), phi = phi0 + f->angular * s;
+    const double half = sin(0.5 * turn), versine = 2 * half * half, sine = sin(turn);
+    const double dsin = f->cos0 * sine - f->sin0 * versine, dcos = -f->sin0 * sine - f->cos0 * versine;
+    /* the end's velocity is the centre's, (v + l phi sin, w + l phi cos) at t0, minus l phi (sin, cos) */
+    x[ROD_X] = f->x0[ROD_X] + s * (f->x0[ROD_V] + l * phi0 * f->sin0 + 0.5 * f->ax * s) + l * dcos;
+    x[ROD_V] = f->x0[ROD_V] + f->ax * s - l * (phi * dsin + (phi - phi0) * f->sin0);
+    x[ROD_Y] = f->x0[ROD_Y] + s * (f->x0[ROD_W] + l * phi0 * f->cos0 + 0.5 * f->ay * s) - l * dsin;
+    x[ROD_W] = f->x0[ROD_W] + f->ay * s - l * (phi * dcos + (phi - phi0) * f->cos0);
+    x[ROD_THETA] = f->x0[ROD_THETA] + turn;
+    x[ROD_PHI] = phi;
+}
+
+/* Within such a time each event indicator of a flight (the gap y, the force bracket, linear in
+ * y and w above the floor, v and w: contact.c) is a quadratic in time plus an arc of sin and cos
+ * of at most pi/8, so it has at most one root unless it turns there; and where the gap turns,
+ * so does the end's height, at the root of w, itself an indicator (the dip bottom): a touch
+ * and go of the end between two samples shows as w's root. */
+#define TURN_PER_SAMPLE (3.14159265358979323846 / 8)
+#define DROP_PER_SAMPLE (1.0 / 32)
+
+double rod_flight_sample_step(const RodFlight *f, double t)
+{
+    const double phi = fabs(f->x0[ROD_PHI] + f->angular * (t - f->t0)), ang = fabs(f->angular);
+    /* phi s + ang s^2/2 = TURN, solved without cancellation */
+    const double by_turn = 2 * TURN_PER_SAMPLE / (phi + sqrt(phi * phi + 2 * ang * TURN_PER_SAMPLE));
+    /* the end's acceleration is at most the centre's plus l (phi^2 + ang): K s^2/2 = l DROP */
+    const double K = hypot(f->ax, f->ay) + f->length * (phi * phi + ang);
+    const double by_drop = K > 0 ? sqrt(2 * DROP_PER_SAMPLE * f->length / K) : INFINITY;
+    return fmin(by_turn, by_drop);
+}
+
 /* ------------------------------------------- the rod's analytic Jacobian */
 
 static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
