@@ -8,10 +8,13 @@ and at the loosest rtol of bench.py's ladder that brings every case's w at the
 return within 1e-6 (absolute; v0 = 1, so also relative to the impact speed) of
 the tight reference; microseconds per case (median over cases of the median over
 repeats), the fixed cost per run (the same run without its fmi2DoStep: reset,
-set values, initialization, reads) and the largest |w - w_ref|."""
+set values, initialization, reads) and the largest |w - w_ref|; the work per case
+(medians over cases, from the FMU's logStatistics line, in one more run not timed):
+integration steps (the explicit pair's and CVODE's), right-hand sides, evaluations
+of the flight's closed form, and events (every event update, a switch or not)."""
 import statistics
 
-from bench_runners import NATIVE_CS, NATIVE_CS_FMUS, cases_at, run_native_cs
+from bench_runners import NATIVE_CS, NATIVE_CS_FMUS, cases_at, cs_counts, run_native_cs
 
 TARGET = 1e-6
 DEFAULT_TOLERANCE = 1e-6
@@ -20,11 +23,13 @@ REPEATS = 20
 
 def _run(fmu, eps, rtol, ref):
     rows = run_native_cs(NATIVE_CS, fmu, cases_at(eps), rtol=rtol, repeat=REPEATS)
+    counts = [cs_counts(r) for r in rows]
     return dict(rtol=rtol, err=max(abs(r["w"] - w) for r, w in zip(rows, ref[eps])),
                 us=1e6 * statistics.median(r["wall_seconds"] for r in rows),
                 us_max=1e6 * max(r["wall_seconds"] for r in rows),
                 fixed=1e6 * statistics.median(r["fixed_seconds"] for r in rows),
-                events=statistics.median(r["switches"] for r in rows))
+                **{k: statistics.median(c[k] for c in counts) if all(k in c for c in counts) else None
+                   for k in ("nsteps", "nfev", "nflight", "nevents")})
 
 
 def cs_results(ref, epsilons, ladder):
@@ -52,14 +57,15 @@ WHERE_THE_TIME_GOES = (
 
 def cs_markdown(results):
     lines = ["## Co-Simulation from C: one fmi2DoStep per case", "", __doc__.split("\n\n", 1)[1].replace("\n", " "),
-             "", "| runner | eps | rtol | abs(w-w_ref) | us/case (slowest case) | fixed us/run | switches |",
-             "|---|---|---|---|---|---|---|"]
+             "", "| runner | eps | rtol | abs(w-w_ref) | us/case (slowest case) | fixed us/run | steps | rhs | "
+             "flight evaluations | events |", "|---|---|---|---|---|---|---|---|---|---|"]
     for (name, eps), (default, equal) in results.items():
         for label, r in (("default", default), ("equal", equal)):
             if r is None:
-                lines.append(f"| {name} | {eps:.0e} | none of the ladder within {TARGET:g} | | | | |")
+                lines.append(f"| {name} | {eps:.0e} | none of the ladder within {TARGET:g} | | | | | | | |")
                 continue
             rtol = f"{r['rtol']:.0e}" + (" (default)" if label == "default" else f" (within {TARGET:g})")
+            work = " | ".join("–" if r[k] is None else f"{r[k]:.0f}" for k in ("nsteps", "nfev", "nflight", "nevents"))
             lines.append(f"| {name} | {eps:.0e} | {rtol} | {r['err']:.1e} | {r['us']:.1f} ({r['us_max']:.1f}) | "
-                         f"{r['fixed']:.2f} | {r['events']:.0f} |")
+                         f"{r['fixed']:.2f} | {work} |")
     return lines + ["", WHERE_THE_TIME_GOES]

@@ -169,12 +169,15 @@ int main(int argc, char **argv)
             fixed[rep] = seconds() - t0;
         }
         /* the work, from one more run with the statistics logged (not timed: the log line costs) */
+        /* (an FMU without the category refuses it, once: its counts are -1; the next run resets it) */
         static const fmi2String STATISTICS[] = { "logStatistics" };
+        static int has_statistics = 1;
         for (int q = 0; q < N_STATS; ++q) s.stats[q] = -1;
-        if (!status) {
+        if (!status && has_statistics && s.fmu.fmi.SetDebugLogging(s.c, fmi2True, 1, STATISTICS) != fmi2OK)
+            has_statistics = 0;
+        else if (!status && has_statistics) {
             Run counted;
-            status = s.fmu.fmi.SetDebugLogging(s.c, fmi2True, 1, STATISTICS) != fmi2OK ||
-                     !run(&s, k, tol, 1, &counted, err, sizeof err) ||
+            status = !run(&s, k, tol, 1, &counted, err, sizeof err) ||
                      s.fmu.fmi.SetDebugLogging(s.c, fmi2False, 1, STATISTICS) != fmi2OK;
             if (status && !err[0]) snprintf(err, sizeof err, "fmi2SetDebugLogging(logStatistics) failed");
         }
