@@ -13,13 +13,24 @@
 
 #include <math.h>
 
+/* eq coeffs' a and b, with the applied loads, at sin s and cos c of theta */
+static double coeff_a(const RodParams *p, double s, double c, double phi)
+{
+    return -phi * phi * c + p->f_x - p->alpha * s * p->tau;
+}
+
+static double coeff_b(const RodParams *p, double s, double c, double phi)
+{
+    return -1 + phi * phi * s + p->f_y - p->alpha * c * p->tau;
+}
+
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
 {
     const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
     const double k = 1 + al * s * s;
     RodCoeffs r;
-    r.a = -phi * phi * c + p->f_x - al * s * p->tau;     /* eq coeffs, with the applied loads */
-    r.b = -1 + phi * phi * s + p->f_y - al * c * p->tau;
+    r.a = coeff_a(p, s, c, phi);
+    r.b = coeff_b(p, s, c, phi);
     r.q_plus = al * s * c - mu * k;
     r.q_minus = al * s * c + mu * k;
     r.p_plus = 1 + al * c * c - mu * al * s * c;
@@ -40,13 +51,15 @@ static void rod_evaluate(const void *params, const double x[], BodyState *s)
 {
     const RodParams *p = params;
     const double th = x[ROD_THETA], phi = x[ROD_PHI], sn = sin(th), cs = cos(th), al = p->alpha;
-    const RodCoeffs k = rod_coeffs(p, th, phi);
+    /* a and b from this sin and cos: the right-hand side's hot path needs none of rod_coeffs'
+     * other coefficients, nor sin and cos twice */
+    const double a = coeff_a(p, sn, cs, phi), b = coeff_b(p, sn, cs, phi);
     const double G_TT = 1 + al * sn * sn, G_TN = al * sn * cs, G_NN = 1 + al * cs * cs;
     *s = (BodyState){ .x = x[ROD_X], .y = x[ROD_Y], .v = x[ROD_V], .w = x[ROD_W],
-                      .free = { k.a, k.b, al * p->tau },
+                      .free = { a, b, al * p->tau },
                       .normal = { G_TN, G_NN, -al * cs },
                       .friction = { G_TT, G_TN, -al * sn },
-                      .a = k.a, .b = k.b,
+                      .a = a, .b = b,
                       .a_scale = phi * phi * fabs(cs) + fabs(p->f_x) + al * fabs(sn * p->tau),
                       .G_TT = G_TT, .G_TN = G_TN, .G_NN = G_NN };
     const double Xd = x[ROD_V] + phi * sn, Yd = x[ROD_W] + phi * cs;
