@@ -44,15 +44,26 @@ def cs_results(ref, epsilons, ladder):
 
 
 WHERE_THE_TIME_GOES = (
-    "Where the time of the explicit path goes (perf over 5,000 runs at eps = 1e-6, rtol 1e-6, the driver's "
-    "own printing left out): about half in the rod's right-hand side (sincos 25 %, rod_coeffs 18 %, "
-    "rod_derivatives 4 %: 6 evaluations a step, 60-75 steps and 3-4 events a case, 450-500 evaluations), "
-    "a quarter in the pair's own arithmetic (stages, error norm, dense output, root finding), 5 % in pow "
-    "of the step control, 4 % in the event indicators after each step, the rest in the event updates "
-    "(moving off the surfaces) and the fixed cost (reset, set values, initialization, reads: about 1 us). "
-    "Fewer evaluations need a higher order (an 8th-order pair takes about a third of the steps at 12 "
-    "evaluations each) or the flight in closed form (10-15 steps a case, and at eps = 1e-2 the flight's "
-    "integration error, 1.1 time units to the horizon, that keeps the default tolerance above 1e-6 there).")
+    "Where the time of the explicit path goes (perf over 3,000 runs of each case at eps = 1e-6 and 1e-2, rtol "
+    "1e-6): a quarter in sin and cos (one sincos a right-hand side: the body's evaluation computes them once "
+    "and only eq coeffs' a and b), 30-35 % in the rod's body and the contact core's right-hand side "
+    "(rod_evaluate, contact_derivatives: 6 evaluations a step, 30-64 steps a case at eps = 1e-2 ... 1e-6, "
+    "186-390 evaluations), 10-14 % in the pair's own arithmetic (stages, error norm, dense output, root "
+    "finding), 3 % in pow of the step control, 5-6 % in the event indicators after each step, 4-7 % in "
+    "formatting the event log's text at every event even with logging off (snprintf), the rest in the event "
+    "updates (moving off the surfaces) and the fixed cost (reset, set values, initialization, reads). The "
+    "flight is evaluated in closed form (fmu_src/fmi/closed_flight.c: 8-36 evaluations a case, samples and "
+    "root finding, about 1 % of the time), so it carries the lift-off velocity to the horizon without "
+    "integration error: at eps = 1e-2 the default tolerance is now within 1e-6 (2.5e-7; the explicit pair's "
+    "flight left 2.8e-5). Fewer evaluations in the contact need a higher order (an 8th-order pair takes about "
+    "a third of the steps at 12 evaluations each). This run's machine was loaded (load average 4-6: other "
+    "jobs on its 2 cores): main's build before the closed-form flight, run interleaved with this one at the "
+    "same time, took 40.5, 42.0, 44.4, 52.1, 53.5 us per case at eps = 1e-2 ... 1e-6 (default tolerance) "
+    "where this build took 28.4, 30.6, 31.9, 36.4, 37.8 (0.70x; the last quiet run of this table had main's "
+    "at 20-29 us, so about 14-20 us here). A sustained contact (CVODE after the hand-over), interleaved the "
+    "same way through fmpy: the rod put down at rest at theta = 1, eps = 1e-6, one step of 0.01 (it sticks "
+    "and tips over), 0.52 -> 0.41 ms; sliding at v = 1, theta = 0.3, mu = 0.3, eps = 1e-4 for 0.2, "
+    "0.35 -> 0.28 ms: no slower (the cheaper right-hand side).")
 
 
 def cs_markdown(results):
