@@ -162,6 +162,6 @@ case "${1:-}" in
               "$ROOT/out/validation.md" "$ROOT/out/validation-fmi3.md" "$ROOT/out/figures/" "$ROOT/out/couple.png"
           exit $rc ;;
     platforms) setup; platforms ;;
-    test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; platforms; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider tests ;;
+    test) setup; apt_install "${APT_TEST_PACKAGES[@]}"; test_python_setup; importer_setup; sundials7_setup; platforms; more_importers_setup; "$PY" -m pytest -q -p no:cacheprovider --durations=15 tests ;;
     *) echo "usage: bash run.sh main|platforms|test" >&2; exit 2 ;;
 esac
