@@ -147,7 +147,7 @@ void instance_start(Instance *in)
 
 Status instance_event_update(Instance *in, const char *call, bool *states_changed)
 {
-    ModelEvent e;
+    ModelEvent e = { .describe = in->log_on[LOG_EVENTS] || in->log_on[LOG_ALL] };   /* as instance_log_event */
     model_set_time(&in->model, in->time);
     if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);

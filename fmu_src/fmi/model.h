@@ -147,7 +147,8 @@ void model_start(Model *m, double time, char *text, size_t size);
 void model_begin_integration(Model *m);
 
 /* The event update at `time`: new modes iterated to a fixpoint, the state
- * moved off every switching surface, the switch recorded. False, with the
+ * moved off every switching surface, the switch recorded, and e->text saying
+ * so when the caller asks (e->describe: it logs events). False, with the
  * reason in e->text, if the modes do not settle or too many events fall on
  * one instant (a Zeno run). */
 bool model_event_update(Model *m, double time, ModelEvent *e);
