@@ -214,7 +214,7 @@ def markdown(table, equal, chosen, targets, peaks, names, epsilons, sweep, comma
     if cs_lines:
         out += [""] + list(cs_lines)
     if sweep:
-        out += ["", "## Sweep on dask", ""] + sweep
+        out += ["", "## Sweep (in this process, or on dask when that is sooner)", ""] + sweep
     return "\n".join(out) + "\n"
 
 
@@ -240,7 +240,8 @@ def main(argv=None):
     rtols = {key: rtol for key, (rtol, _) in chosen.items()}
     equal = summarize(TUNABLE, measure(runners, TUNABLE, repeats, epsilons, rtols), ref, epsilons)
     runners.close()
-    cs = cs_markdown(cs_results(ref, epsilons, LADDER)) + [""] + si_markdown(epsilons)
+    from arm_table import arm_markdown
+    cs = cs_markdown(cs_results(ref, epsilons, LADDER)) + [""] + si_markdown(epsilons) + [""] + arm_markdown(epsilons)
     peaks = {} if args.quick else peak_memory(names, epsilons)
     sweep = [] if args.quick else sweep_rows(args.sweep_cases)
     command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")

@@ -1,5 +1,5 @@
 """The `painleve sweep` command run as a user runs it (a subprocess), with what it wrote
-checked: dask equals serial; an interrupted sweep resumes without recomputing; a row cut
+checked: dask equals serial; an interrupted sweep (on dask or in this process) resumes without recomputing; a row cut
 by a crash is rerun; a different sweep into the same file is refused."""
 import os
 import signal
@@ -41,8 +41,20 @@ def test_an_interrupted_sweep_resumes_without_recomputing_finished_cases(fmu_pat
     line saying how many cases are saved and how to resume, none of distributed's ERROR lines; the
     same command then finishes the sweep, each case once."""
     out = tmp_path / "sweep.csv"
-    args = ["sweep", "--fmu", fmu_path, "--theta0", "0.5:1.4:50", "--phi0", "0.3,0.6", "--eps", "1e-4,1e-5",
-            "--batch", 10, "--workers", 2, "--out", out, "--no-progress"]
+    interrupted_and_resumed(out, ["sweep", "--fmu", fmu_path, "--theta0", "0.5:1.4:50", "--phi0", "0.3,0.6", "--eps",
+                                  "1e-4,1e-5", "--batch", 10, "--workers", 2, "--out", out, "--no-progress"], 200)
+
+
+def test_a_sweep_interrupted_in_this_process_resumes_the_same_way(fmu_path, tmp_path):
+    """The default path: a sweep of ~3 s of Model Exchange cases stays in this process (a local
+    cluster would take longer) and Ctrl-C stops it between or inside cases alike."""
+    out = tmp_path / "sweep.csv"
+    stderr = interrupted_and_resumed(out, ["sweep", "--fmu", fmu_path, "--theta0", "0.5:1.4:250", "--phi0", "0.3,0.6",
+                                           "--eps", "1e-4,1e-5", "--batch", 10, "--out", out, "--no-progress"], 1000)
+    assert "dask" not in stderr
+
+
+def interrupted_and_resumed(out, args, total):
     p = subprocess.Popen(painleve_command() + [str(a) for a in args], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True, start_new_session=True)
     deadline = time.monotonic() + 120
@@ -58,14 +70,15 @@ def test_an_interrupted_sweep_resumes_without_recomputing_finished_cases(fmu_pat
     assert len(errors) == 1 and "run the same command to resume" in errors[0], stderr
     before = out.read_text()
     done = before.count("\n") - 1
-    assert 30 <= done < 200
-    assert f"interrupted; {done} of 200 cases are saved in {out}" in errors[0]
+    assert 30 <= done < total
+    assert f"interrupted; {done} of {total} cases are saved in {out}" in errors[0]
     r = run(*args, check_rc=0)
-    assert f"resuming {out}: {done} of 200 cases already done, {200 - done} to run" in r.stderr
+    assert f"resuming {out}: {done} of {total} cases already done, {total - done} to run" in r.stderr
     after = out.read_text()
     assert after.startswith(before)          # finished rows untouched, the rest appended
     ids = pd.read_csv(out)["id"]
-    assert sorted(ids) == list(range(200))   # each case once: none recomputed, none lost, no duplicate
+    assert sorted(ids) == list(range(total))  # each case once: none recomputed, none lost, no duplicate
+    return stderr
 
 
 def test_a_csv_row_cut_by_a_crash_is_dropped_and_rerun(fmu_path, tmp_path):

@@ -1,4 +1,4 @@
-"""`painleve sweep`: many IWC cases on dask, written as they finish, resumable."""
+"""`painleve sweep`: many IWC cases, here or on dask, written as they finish, resumable."""
 import argparse
 import pathlib
 import re
@@ -10,11 +10,12 @@ from .options import DEFAULTS, at_least_one, count, fmu_option, interface_option
 
 
 def add_parser(sub):
-    sw = sub.add_parser("sweep", allow_abbrev=False, help="many IWC cases on dask, written as they finish",
+    sw = sub.add_parser("sweep", allow_abbrev=False, help="many IWC cases, here or on dask, written as they finish",
                         formatter_class=argparse.RawDescriptionHelpFormatter,
                         description=textwrap.fill(
-                            "Runs a grid or a random sample of IWC cases on dask (a local cluster, or a scheduler "
-                            "by address) and writes one row per case to a CSV or Parquet file as batches finish. "
+                            "Runs a grid or a random sample of IWC cases, in this process or on dask (a local "
+                            "cluster when the sweep is long enough to pay for its start-up, or a scheduler by "
+                            "address), and writes one row per case to a CSV or Parquet file as chunks finish. "
                             "Run the same command again to resume an interrupted sweep: finished cases are not "
                             "recomputed.", 79),
                         epilog="each parameter takes:\n"
@@ -40,8 +41,12 @@ def add_parser(sub):
                     help="results: a .csv file or a .parquet dataset (default %(default)s)")
     sw.add_argument("--scheduler", type=scheduler_address, metavar="ADDRESS", help="an existing dask scheduler, e.g. tcp://host:8786 "
                     "(its workers need the painleve package; the FMU is sent to them)")
-    sw.add_argument("--workers", type=at_least_one, default=2, help="workers of the local cluster (default 2)")
-    sw.add_argument("--batch", type=at_least_one, default=200, help="cases per dask task (default 200)")
+    sw.add_argument("--workers", type=at_least_one, metavar="N",
+                    help="run on a local dask cluster of N worker processes (default: the first cases run in this "
+                         "process, the rest on a cluster of this machine's cores only when it finishes sooner "
+                         "despite its start-up of a few seconds)")
+    sw.add_argument("--batch", type=at_least_one, metavar="N", help="cases per chunk, i.e. per dask task and per "
+                    "written part (default: a few chunks per worker, each at most a few seconds of work)")
     sw.add_argument("--serial", action="store_true", help="run in this process, without dask")
     fmu_option(sw)
     interface_option(sw)
@@ -67,7 +72,7 @@ def run(args):
     # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly: main (interrupt.caught) makes them KeyboardInterrupt.
     try:
         result = run_sweep(spec, fmu, args.out, fmi_type=FMI_TYPES[args.interface], scheduler=args.scheduler,
-                           workers=args.workers, batch=max(1, args.batch), serial=args.serial,
+                           workers=args.workers, batch=args.batch, serial=args.serial,
                            progress=not args.no_progress)
     except StoreError as err:
         raise UsageError(f"painleve sweep: {err}") from None

@@ -1,13 +1,15 @@
-"""Sweeps of IWC cases over a grid or a random sample, run on dask.
+"""Sweeps of IWC cases: in this process, or on dask when that finishes sooner.
 
-The driver splits the case ids still to do into batches (a few hundred cases,
-about a second of work each) and submits them to a dask cluster: a local one
-on this machine by default, or any scheduler by address, unchanged. Each
-worker process keeps one `Experiment` per FMU (fmpy's fast loop: one unzip,
-one instance, reset between cases); the FMU's bytes are sent to the workers
-once, so they need the `painleve` package but not the file. Results are
-written as batches finish (see `sweepstore`), so an interrupted sweep resumes
-without recomputing what was written."""
+Where a sweep runs, and in what chunks, is sweep.plan's: by default its first
+chunk runs here, and the rest here too unless a local cluster would finish it
+sooner despite its start-up; `--workers` or `--scheduler` choose dask, `--serial`
+this process. On dask the driver submits a few large chunks per worker: a local
+cluster on this machine, or any scheduler by address, unchanged. Each process
+keeps one `Experiment` per FMU (fmpy's fast loop: one unzip, one instance,
+reset between cases); the FMU's bytes are sent to the workers once, so they
+need the `painleve` package but not the file. Results are written as chunks
+finish (see `sweepstore`), so an interrupted sweep resumes without recomputing
+what was written. A case's numbers do not depend on where or in which chunk it ran."""
 import atexit
 import contextlib
 import hashlib
@@ -27,6 +29,7 @@ from ..experiments.outcome import SimulationError
 from ..fmu.experiment import Experiment
 from ..theory import analytic as an
 from ..theory.predict_many import predict_many
+from . import plan
 from .store import ResultStore, as_frame
 
 
@@ -135,9 +138,14 @@ def _progress(total, initial, enabled):
                 dynamic_ncols=True, mininterval=0.5, smoothing=0.05)
 
 
-def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, workers=2, batch=200, serial=False,
-              progress=True, say=lambda text: print(text, file=sys.stderr)):
-    """Runs every case of `spec` not yet in `out`; returns a SweepResult."""
+def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, workers=None, batch=None,
+              serial=False, progress=True, start_up=plan.LOCAL_START_UP_SECONDS,
+              say=lambda text: print(text, file=sys.stderr)):
+    """Runs every case of `spec` not yet in `out`; returns a SweepResult. Where (sweep.plan): in this
+    process if `serial`; on the `scheduler`'s workers, or a local cluster of `workers`, when either is
+    given; otherwise the first chunk here and the rest here or on a local cluster of the cores other
+    jobs leave free, whichever finishes sooner (`start_up`: the cluster's start-up in seconds). `batch`: cases
+    per chunk (default: sized by sweep.plan from the cases' cost). The numbers are the same on every path."""
     blob = FmuBlob.read(fmu_path)
     store = ResultStore(out)
     done = store.open({**spec.describe(), "fmu_sha256": blob.digest, "fmi_type": fmi_type})
@@ -145,24 +153,41 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
     if len(done):
         say(f"resuming {out}: {len(done)} of {spec.total} cases already done, {len(remaining)} to run")
     start = time.monotonic()
-    batches = _batches(remaining, max(1, int(batch)))
+    chosen = not serial and (scheduler is not None or workers is not None)
     # Connected before the progress bar starts: a scheduler that does not answer is one line, no bar.
-    dask = _connect(scheduler, workers) if len(remaining) and not serial else None
+    dask = _connect(scheduler, workers) if len(remaining) and chosen else None
     # The local cluster's workers extract the FMU in here, removed on every way out, even when
     # the workers are stopped before they could clean up (Ctrl-C); a scheduler's workers may
     # be on other machines and outlive the sweep: they clean up themselves (_close_experiments).
     with tempfile.TemporaryDirectory(prefix="painleve-sweep-") as work, \
             _progress(spec.total, len(done), progress) as bar:
-        if not len(remaining):
-            pass
-        elif serial:
-            for ids in batches:
-                df = run_batch(spec, ids, blob, fmi_type)
+        def here(ids):
+            for chunk in ids:
+                df = run_batch(spec, chunk, blob, fmi_type)
                 store.append(df)
                 bar.update(len(df))
+        on_dask = dict(store=store, bar=bar, scheduler=scheduler, say=say, tmp_dir=None if scheduler else work)
+        if not len(remaining):
+            pass
+        elif dask is not None:
+            _run_on_dask(spec, remaining, blob, fmi_type, dask, batch=batch, **on_dask)
         else:
-            _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, scheduler=scheduler, say=say,
-                         tmp_dir=None if scheduler else work)
+            # The probe's rate is its cases' alone: the FMU extracted before the clock, and the
+            # first write (pyarrow's import, 0.2-0.5 s) after it.
+            experiment_for(blob, fmi_type)
+            probe, rest = remaining[:batch or plan.PROBE_CASES], remaining[batch or plan.PROBE_CASES:]
+            t = time.monotonic()
+            df = run_batch(spec, probe, blob, fmi_type)
+            per_case = (time.monotonic() - t) / len(probe)
+            store.append(df)
+            bar.update(len(df))
+            workers = max(2, int(plan.free_cores()))
+            if not serial and len(rest) and plan.cluster_pays(per_case, len(rest), workers, start_up):
+                _close_experiments()            # this process's instance: the workers have theirs
+                _run_on_dask(spec, rest, blob, fmi_type, _connect(None, workers), batch=batch, per_case=per_case,
+                             **on_dask)
+            else:
+                here(_batches(rest, plan.serial_chunk(per_case, batch)))
     return SweepResult(total=spec.total, skipped=len(done), ran=len(remaining),
                        seconds=time.monotonic() - start, out=str(out))
 
@@ -195,12 +220,15 @@ def _workers_ignore_ctrl_c():
         signal.signal(signal.SIGINT, previous)
 
 
-def _run_on_dask(spec, batches, blob, fmi_type, store, bar, dask, *, scheduler, say, tmp_dir=None):
+def _run_on_dask(spec, ids, blob, fmi_type, dask, *, store, bar, scheduler, say, batch=None, per_case=None,
+                 tmp_dir=None):
+    """The cases `ids` in chunks of `batch` (default: sweep.plan's, at `per_case` seconds a case if measured)."""
     from dask.distributed import as_completed
     client, cluster = dask
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
         say(f"dask: {'scheduler ' + scheduler if scheduler else 'local cluster'} with {n_workers} worker(s)")
+        batches = _batches(ids, plan.task_chunk(len(ids), n_workers, per_case, batch))
         blob_future = client.scatter(blob, broadcast=True, hash=False)
 
         def submit(ids):
