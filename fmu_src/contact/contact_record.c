@@ -34,18 +34,20 @@ void contact_record_describe_start(const ContactRecord *r, char *text, size_t si
     snprintf(text, size, "initial mode contact = %d, mode = %+d", r->mode.contact, r->mode.slip);
 }
 
-/* Which indicators changed sign since integration last restarted. */
-static void describe_fired(const ContactRecord *r, const double z[CONTACT_NZ], char *text, size_t size)
+/* Which indicators of `mode` changed sign since integration last restarted (none at the initial
+ * event iteration). */
+static void describe_fired(const ContactRecord *r, ContactMode mode, bool initial, const double z[CONTACT_NZ],
+                           char *text, size_t size)
 {
     size_t n = 0;
-    if (r->initial_event) {
+    if (initial) {
         snprintf(text, size, "none (initial event iteration)");
         return;
     }
     for (int i = 0; i < CONTACT_NZ && n < size; ++i)
         if ((z[i] > 0) != (r->z_at_restart[i] > 0) || z[i] == 0)
             n += (size_t)snprintf(text + n, size - n, "%s'%s' = %.3g", n ? ", " : "",
-                                  contact_indicator_name(r->mode, i), z[i]);
+                                  contact_indicator_name(mode, i), z[i]);
     if (n == 0) snprintf(text, size, "none (time or step event)");
 }
 
@@ -117,8 +119,9 @@ static void describe_guard(const ContactRecord *r, const Contact *c, const doubl
 bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const double z[CONTACT_NZ], double time,
                           double time_unit, bool floor_jumped, ModelEvent *e)
 {
-    char fired[512];
-    describe_fired(r, z, fired, sizeof fired);
+    /* the indicators' text costs snprintf at every event: made only for a log line or a failure */
+    char fired[512] = "";
+    const bool initial = r->initial_event;
     const Instant instant = instant_at(c, x, time, time_unit);
     r->initial_event = false;
     const ContactMode before = r->mode;
@@ -135,6 +138,7 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
         c, &r->mode, x, ldexp(1.0, again < CONTACT_MAX_RETURNS ? again : CONTACT_MAX_RETURNS), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
+    if (e->describe || result != CONTACT_SETTLED) describe_fired(r, before, initial, z, fired, sizeof fired);
     if (result != CONTACT_SETTLED) {
         snprintf(e->text, sizeof e->text, result == CONTACT_PING_PONG
                  ? "mode decision does not settle at t = %.17g (contact = %d, mode = %+d): rules ping-pong"
@@ -145,12 +149,16 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
     if (e->switched) record_switch(r, before, time);
     /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
     r->returns = e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
-    snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
-             before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
+    if (e->describe)
+        snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
+                 before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
+    else
+        e->text[0] = '\0';
     /* Zeno guard: events that do not advance time beyond one instant. */
     if (!same_instant(r, &instant, time)) r->events_at_instant = 0;
     r->instant = time;
     if (++r->events_at_instant < CONTACT_MAX_EVENTS_AT_ONE_INSTANT) return true;
+    if (!fired[0]) describe_fired(r, before, initial, z, fired, sizeof fired);
     describe_guard(r, c, x, &instant, time, fired, e);
     return false;
 }

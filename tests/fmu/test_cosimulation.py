@@ -206,7 +206,8 @@ def test_a_faster_flat_spin_on_the_contact_boundary_runs_on_and_only_the_solver_
     # Zeno guard ended the run. The grazing decisions (docs/bounded_calls.md) now move the state off the
     # boundary past the solver's error, so the run goes on to the end. Nothing does work on the rod
     # (friction and the damper take energy), so the energy may move only by the solver's error, which
-    # falls with the tolerance.
+    # falls with the tolerance; where the flights are in closed form (no solver error) and the contacts
+    # only take energy, only by rounding at either tolerance (a few ulps of it).
     rises = []
     for tolerance in (1e-8, 1e-10):
         r = fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", relative_tolerance=tolerance, output_interval=1e-5,
@@ -214,7 +215,7 @@ def test_a_faster_flat_spin_on_the_contact_boundary_runs_on_and_only_the_solver_
                               output=["energy"])
         assert r["time"][-1] == pytest.approx(0.01)
         rises.append(np.max(np.diff(r["energy"])) / r["energy"][0])
-    assert rises[1] < 1e-8 and rises[1] < rises[0] / 5, rises
+    assert rises[1] < 1e-8 and (rises[1] < rises[0] / 5 or max(rises) < 64 * np.finfo(float).eps), rises
 
 
 def test_a_stiffly_damped_soft_contact_runs_to_the_end_alike_in_both_interfaces(fmu_path):

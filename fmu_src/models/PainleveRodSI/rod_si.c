@@ -224,6 +224,28 @@ void model_step_end(Model *m, double elapsed)
     model_touch(m);
 }
 
+/* ------------------------------------- closed-form flight (model.h) */
+
+/* Free of the floor (which enters only the gap and the contact law), the rod's centre falls
+ * at (F_x/m, F_y/m - g) and it turns at tau/J, the loads held over the step (they change
+ * only at communication points, where the integrator restarts). */
+bool model_flight_begin(const Model *m, double t0, const double x0[MODEL_NX], ModelFlight *f)
+{
+    if (m->run.mode.contact) return false;
+    *f = rod_flight(m->l, m->F_x / m->m, m->F_y / m->m - m->g, m->tau / m->J, t0, x0);
+    return true;
+}
+
+void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX])
+{
+    rod_flight_at(f, t, x);
+}
+
+double model_flight_sample_step(const ModelFlight *f, double t)
+{
+    return rod_flight_sample_step(f, t);
+}
+
 /* ------------------------------------------------------- modes, events */
 
 void model_decide_initial_mode(Model *m)
