@@ -18,7 +18,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import bounded_cases as bc  # noqa: E402
 import bounded_runs as br  # noqa: E402
 
-COLUMNS = ("hang", "crash", "zeno", "illegal", "harness", "error", "discard", "solver")
+COLUMNS = ("hang", "crash", "zeno", "illegal", "harness", "t-limit", "error", "discard", "solver")
 
 
 def main(argv=None):

@@ -6,7 +6,10 @@ bench/bounded_runs.py --worker CASES_FILE FIRST FD`) runs each case through fmpy
 Each case's result: its outcome and the slowest single call. Outcomes:
   ok, discard (a doStep returned Discard, and the instance then answered its getters),
   error (a call returned Error; its log does not say Zeno), solver (Model Exchange: fmpy's
-  CVode gave up, e.g. too much work: the importer's limit, not the FMU's), and the failures:
+  CVode gave up, e.g. too much work: the importer's limit, not the FMU's),
+  t-limit (an error whose log says t cannot resolve the contact at that time: its time scale
+  is below what events at that t can be placed to, contact_record.h; the double's limit, said
+  as such), and the failures:
   zeno (an error whose log or message says "Zeno"), illegal (Discard from a call
   other than doStep, or the getters failing after a Discard, or a non-finite
   output after one), harness (this file's own exception), and, recorded by the
@@ -130,6 +133,8 @@ def run_one(case, md, unzipdir):
     text = " | ".join(calls.messages[-3:])
     if outcome == "error" and ("zeno" in text.lower() or "zeno" in detail.lower()):
         outcome = "zeno"
+    elif outcome == "error" and "t cannot resolve the contact" in text:
+        outcome = "t-limit"
     if outcome not in ("ok", "discard"):
         detail = f"{detail}; log: {text}"[:1000]
     return outcome, detail, calls.slowest

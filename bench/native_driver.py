@@ -19,7 +19,8 @@ import subprocess
 import tempfile
 
 FIELDS = ("theta0", "phi0", "v0", "delta", "epsilon", "w10", "alpha", "mu")
-INTEGERS = {"nsteps", "nfev", "njev", "ngev", "nevents", "switches", "contact"}
+INTEGERS = {"nsteps", "nfev", "njev", "ngev", "nevents", "switches", "contact",
+            "steps", "rhs", "flight_evaluations", "cvode_steps", "cvode_rhs", "events"}   # the last: painleve_native_cs
 
 
 def case_line(case):

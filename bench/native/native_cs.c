@@ -10,7 +10,10 @@
  * horizon (Experiment's), the state and the record read. wall_seconds: the
  * median over --repeat runs of all of that; fixed_seconds: the same run with
  * the step left out (reset, set values, initialization, the reads), the cost
- * per run that is not integration. The state at the horizon is in flight;
+ * per run that is not integration. One more run, untimed, with the FMU's log category
+ * logStatistics on, gives the integrators' work over the step (explicit steps, right-hand
+ * sides, closed-form flight evaluations, CVODE steps and right-hand sides, events: the
+ * FMU's log line). The state at the horizon is in flight;
  * bench/native_driver.py runs the flight back to the floor in closed form
  * (as the harness's Co-Simulation fast loop does).
  *
@@ -32,19 +35,30 @@ static const char *const SET[N_SET] = { "alpha", "mu", "delta", "epsilon", "x", 
 enum { R_V, R_Y, R_W, R_THETA, R_PHI, R_CONTACT_END, N_READ };
 static const char *const READ[N_READ] = { "v", "y", "w", "theta", "phi", "t_contact_end" };
 
+/* The integrators' work over a step, as the FMU's logStatistics line gives it. */
+enum { S_STEPS, S_RHS, S_FLIGHT, S_CVODE_STEPS, S_CVODE_RHS, S_EVENTS, N_STATS };
+
 typedef struct {
     FmuImport fmu;
     fmi2CallbackFunctions callbacks;
     fmi2Component c;
     int used;
     fmi2ValueReference set[N_SET], read[N_READ], switches, contact;
+    long stats[N_STATS]; /* from the last logStatistics line; -1 if none came */
 } Cs;
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status, fmi2String category,
                    fmi2String message, ...)
 {
-    (void)env, (void)name, (void)category;
+    (void)name;
     if (status >= fmi2Warning) fprintf(stderr, "painleve_native_cs: FMU: %s\n", message);
+    const char *counts = strstr(message, ": explicit steps ");
+    if (!env || !category || strcmp(category, "logStatistics") || !counts) return;
+    long *st = ((Cs *)env)->stats;   /* the FMU doubles a '%' for the format: there is none in this line */
+    if (sscanf(counts, ": explicit steps %ld, right-hand sides %ld, closed-form flight evaluations %ld, CVODE steps "
+               "%ld, CVODE right-hand sides %ld, events %ld", &st[S_STEPS], &st[S_RHS], &st[S_FLIGHT],
+               &st[S_CVODE_STEPS], &st[S_CVODE_RHS], &st[S_EVENTS]) != N_STATS)
+        for (int i = 0; i < N_STATS; ++i) st[i] = -1;
 }
 
 static int cs_open(Cs *s, const char *path, char *err, size_t n)
@@ -66,7 +80,7 @@ static int cs_open(Cs *s, const char *path, char *err, size_t n)
     if (!sw || !ct) FAIL("the FMU has no Integer switches or Boolean contact");
     s->switches = sw->vr;
     s->contact = ct->vr;
-    s->callbacks = (fmi2CallbackFunctions){ logger, calloc, free, NULL, NULL };
+    s->callbacks = (fmi2CallbackFunctions){ logger, calloc, free, NULL, s };
     s->c = s->fmu.fmi.Instantiate("native_cs", fmi2CoSimulation, s->fmu.guid, s->fmu.resource_uri, &s->callbacks,
                                   fmi2False, fmi2False);
     if (!s->c) FAIL("fmi2Instantiate(fmi2CoSimulation) failed");
@@ -109,7 +123,7 @@ static int run(Cs *s, const Case *k, double rtol, int step, Run *r, char *err, s
 
 int main(int argc, char **argv)
 {
-    char err[2048];
+    char err[2048] = "";
     const char *path = NULL;
     double rtol = 0;
     long repeat = 1;
@@ -139,7 +153,8 @@ int main(int argc, char **argv)
         status = 1;
     }
     if (!status) printf("theta0\tphi0\tv0\tdelta\tepsilon\tw10\talpha\tmu\trtol\tv\ty\tw\ttheta\tphi\tt_contact_end\t"
-                        "switches\tcontact\twall_seconds\tfixed_seconds\n");
+                        "switches\tcontact\twall_seconds\tfixed_seconds\tsteps\trhs\tflight_evaluations\tcvode_steps\t"
+                        "cvode_rhs\tevents\n");
     for (size_t i = 0; i < count && !status; ++i) {
         const Case *k = &cases[i];
         const double tol = rtol > 0 ? rtol : fmin(1e-6, k->value[EPSILON] / 100);
@@ -153,6 +168,19 @@ int main(int argc, char **argv)
             status = status || !run(&s, k, tol, 0, &skip, err, sizeof err);
             fixed[rep] = seconds() - t0;
         }
+        /* the work, from one more run with the statistics logged (not timed: the log line costs) */
+        /* (an FMU without the category refuses it, once: its counts are -1; the next run resets it) */
+        static const fmi2String STATISTICS[] = { "logStatistics" };
+        static int has_statistics = 1;
+        for (int q = 0; q < N_STATS; ++q) s.stats[q] = -1;
+        if (!status && has_statistics && s.fmu.fmi.SetDebugLogging(s.c, fmi2True, 1, STATISTICS) != fmi2OK)
+            has_statistics = 0;
+        else if (!status && has_statistics) {
+            Run counted;
+            status = !run(&s, k, tol, 1, &counted, err, sizeof err) ||
+                     s.fmu.fmi.SetDebugLogging(s.c, fmi2False, 1, STATISTICS) != fmi2OK;
+            if (status && !err[0]) snprintf(err, sizeof err, "fmi2SetDebugLogging(logStatistics) failed");
+        }
         if (status) {
             fprintf(stderr, "painleve_native_cs: case on line %ld: %s\n", k->line, err);
             break;
@@ -160,8 +188,10 @@ int main(int argc, char **argv)
         for (int f = 0; f < N_FIELDS; ++f) printf("%.17g\t", k->value[f]);
         printf("%.17g", tol);
         for (int q = 0; q < N_READ; ++q) printf("\t%.17g", r.x[q]);
-        printf("\t%d\t%d\t%.9g\t%.9g\n", r.switches, r.contact, median(walls, (size_t)repeat),
+        printf("\t%d\t%d\t%.9g\t%.9g", r.switches, r.contact, median(walls, (size_t)repeat),
                median(fixed, (size_t)repeat));
+        for (int q = 0; q < N_STATS; ++q) printf("\t%ld", s.stats[q]);
+        printf("\n");
     }
     if (path) cs_close(&s);
     free(cases);

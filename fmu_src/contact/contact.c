@@ -75,6 +75,16 @@ ContactCoeffs contact_coeffs(const ContactLaw *law, const BodyState *s)
                             .S_w = s->G_NN - per_G_TT(s->G_TN * s->G_TN, s) };
 }
 
+double contact_time_scale(const Contact *c, const double x[])
+{
+    const BodyState s = contact_body(c, x);
+    const ContactCoeffs k = contact_coeffs(&c->law, &s);
+    const Compliance h = contact_compliance(&c->law, s.y, s.w);
+    const double P = fmax(fmax(fabs(k.p_plus), fabs(k.p_minus)), fabs(k.S_w));
+    const double rate = P * fabs(h.h_w) + sqrt(P * fabs(h.h_yh));
+    return rate > 0 ? c->law.epsilon / rate : INFINITY;   /* nothing responds (or a NaN state) */
+}
+
 static double normal_force(const Contact *c, ContactMode m, const BodyState *s)
 {
     return m.contact ? contact_compliance(&c->law, s->y, s->w).h / c->law.epsilon : 0.0;

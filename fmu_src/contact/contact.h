@@ -89,6 +89,15 @@ typedef struct {
 
 Compliance contact_compliance(const ContactLaw *law, double y, double w);
 
+/* The contact's fastest time scale at state x, in the scaled time: 1/|lambda| for the
+ * faster root of the normal motion linearized there, y'' = P F_N = P h(y/eps, w)/eps,
+ *   lambda^2 - (P h_w/eps) lambda - P h_yh/eps^2 = 0,  |lambda| <= (P |h_w| + sqrt(P |h_yh|))/eps,
+ * with P = max(|p_+|, |p_-|, S_w) (the fastest mode's normal response) and the law's slopes
+ * at the state (its depth stiffens and damps it; in flight the slopes at touch-down).
+ * eps for the paper's rod at rest in contact without damping; +inf if nothing responds
+ * (or the state is NaN). */
+double contact_time_scale(const Contact *c, const double x[]);
+
 /* Energy held by the contact spring at height y: d^2/2 + kappa d^3/3 with d = -y/eps. */
 double contact_spring_energy(const ContactLaw *law, double y);
 

@@ -1,6 +1,7 @@
 /* The event iteration of a model on the contact core: see contact_record.h. */
 #include "contact_record.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 
@@ -33,18 +34,20 @@ void contact_record_describe_start(const ContactRecord *r, char *text, size_t si
     snprintf(text, size, "initial mode contact = %d, mode = %+d", r->mode.contact, r->mode.slip);
 }
 
-/* Which indicators changed sign since integration last restarted. */
-static void describe_fired(const ContactRecord *r, const double z[CONTACT_NZ], char *text, size_t size)
+/* Which indicators of `mode` changed sign since integration last restarted (none at the initial
+ * event iteration). */
+static void describe_fired(const ContactRecord *r, ContactMode mode, bool initial, const double z[CONTACT_NZ],
+                           char *text, size_t size)
 {
     size_t n = 0;
-    if (r->initial_event) {
+    if (initial) {
         snprintf(text, size, "none (initial event iteration)");
         return;
     }
     for (int i = 0; i < CONTACT_NZ && n < size; ++i)
         if ((z[i] > 0) != (r->z_at_restart[i] > 0) || z[i] == 0)
             n += (size_t)snprintf(text + n, size - n, "%s'%s' = %.3g", n ? ", " : "",
-                                  contact_indicator_name(r->mode, i), z[i]);
+                                  contact_indicator_name(mode, i), z[i]);
     if (n == 0) snprintf(text, size, "none (time or step event)");
 }
 
@@ -64,31 +67,78 @@ static void record_switch(ContactRecord *r, ContactMode before, double time)
     if (before.contact && !r->mode.contact) r->t_contact_end = time;
 }
 
-/* An event at `time` on the instant of the current run of events (round-off apart). */
-static bool same_instant(const ContactRecord *r, double time)
+/* What one instant is at an event: its width, and what it is made of. */
+typedef struct {
+    double width;       /* an event within this of the one before is on the same instant */
+    double time_scale;  /* the contact's fastest time scale, in the model's time */
+    double resolution;  /* the time to which events at this time can be placed */
+} Instant;
+
+/* The instant at `time` with the body at x (contact_record.h): a small part of the contact's
+ * own time scale, not wider than round-off of the time, not narrower than what t resolves. */
+static Instant instant_at(const Contact *c, const double x[], double time, double time_unit)
 {
-    return time - r->instant <= 1e-12 * (1 + fabs(time));
+    Instant i = { .time_scale = time_unit * contact_time_scale(c, x),
+                  .resolution = CONTACT_EVENT_RESOLUTION_ULPS * DBL_EPSILON * fabs(time) };
+    /* fmin drops a NaN time scale (a state no event reaches with): the round-off bound holds */
+    i.width = fmax(i.resolution, fmin(CONTACT_INSTANT_RELATIVE * (1 + fabs(time)),
+                                      CONTACT_INSTANT_OF_TIME_SCALE * i.time_scale));
+    return i;
+}
+
+/* An event at `time` on the instant of the current run of events: no farther from the run's
+ * last event than one instant (a chain, so that chatter the time cannot tell apart is one run
+ * however long it goes on, and its moves off the surfaces keep growing). */
+static bool same_instant(const ContactRecord *r, const Instant *i, double time)
+{
+    return time - r->instant <= i->width;
+}
+
+/* The guard's message: a Zeno run, or (the contact faster than t resolves) the time's limit. */
+static void describe_guard(const ContactRecord *r, const Contact *c, const double x[], const Instant *i,
+                           double time, const char *fired, ModelEvent *e)
+{
+    const BodyState s = contact_body(c, x);
+    if (i->time_scale < i->resolution)
+        snprintf(e->text, sizeof e->text,
+                 "%d events each within %.3g of the one before, to t = %.17g: t cannot resolve the contact at "
+                 "this time (its time scale %.3g is below the %.3g to which events at this t can be placed, "
+                 "%d ulps); the boundary %.300s chattered (contact = %d, mode = %+d, y = %g): start nearer t = 0, "
+                 "or with a softer contact",
+                 CONTACT_MAX_EVENTS_AT_ONE_INSTANT, i->width, time, i->time_scale, i->resolution,
+                 CONTACT_EVENT_RESOLUTION_ULPS, fired, r->mode.contact, r->mode.slip, s.y);
+    else
+        snprintf(e->text, sizeof e->text,
+                 "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter at the boundary "
+                 "%.300s, each event within %.3g of the one before, the contact's time scale %.3g; contact = %d, "
+                 "mode = %+d, y = %g)",
+                 CONTACT_MAX_EVENTS_AT_ONE_INSTANT, time, fired, i->width, i->time_scale, r->mode.contact,
+                 r->mode.slip, s.y);
 }
 
 bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const double z[CONTACT_NZ], double time,
-                          bool floor_jumped, ModelEvent *e)
+                          double time_unit, bool floor_jumped, ModelEvent *e)
 {
-    char fired[512];
-    describe_fired(r, z, fired, sizeof fired);
+    /* the indicators' text costs snprintf at every event: made only for a log line or a failure */
+    char fired[512] = "";
+    const bool initial = r->initial_event;
+    const Instant instant = instant_at(c, x, time, time_unit);
     r->initial_event = false;
     const ContactMode before = r->mode;
     const double v = contact_body(c, x).v;
     if (floor_jumped && v != 0) r->mode.slip = v > 0 ? +1 : -1;
-    /* An event that switched nothing, or another at the same instant, means the solver came
-     * straight back to a surface the state had been moved off: its error exceeds the move.
+    /* An event that switched nothing, or another at the same instant (the chain of same_instant),
+     * means the solver came straight back to a surface the state had been moved off: its error
+     * exceeds the move.
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
-    const int again = r->returns + (same_instant(r, time) ? r->events_at_instant : 0);
+    const int again = r->returns + (same_instant(r, &instant, time) ? r->events_at_instant : 0);
     bool moved;
     const ContactEventResult result = contact_event_update(
         c, &r->mode, x, ldexp(1.0, again < CONTACT_MAX_RETURNS ? again : CONTACT_MAX_RETURNS), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
+    if (e->describe || result != CONTACT_SETTLED) describe_fired(r, before, initial, z, fired, sizeof fired);
     if (result != CONTACT_SETTLED) {
         snprintf(e->text, sizeof e->text, result == CONTACT_PING_PONG
                  ? "mode decision does not settle at t = %.17g (contact = %d, mode = %+d): rules ping-pong"
@@ -99,18 +149,17 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
     if (e->switched) record_switch(r, before, time);
     /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
     r->returns = e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
-    snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
-             before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
-    /* Zeno guard: events that do not advance time beyond round-off. */
-    if (!same_instant(r, time)) {
-        r->instant = time;
-        r->events_at_instant = 0;
-    }
+    if (e->describe)
+        snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
+                 before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");
+    else
+        e->text[0] = '\0';
+    /* Zeno guard: events that do not advance time beyond one instant. */
+    if (!same_instant(r, &instant, time)) r->events_at_instant = 0;
+    r->instant = time;
     if (++r->events_at_instant < CONTACT_MAX_EVENTS_AT_ONE_INSTANT) return true;
-    snprintf(e->text, sizeof e->text,
-             "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter at the boundary %s; "
-             "contact = %d, mode = %+d, y = %g)",
-             CONTACT_MAX_EVENTS_AT_ONE_INSTANT, time, fired, r->mode.contact, r->mode.slip, contact_body(c, x).y);
+    if (!fired[0]) describe_fired(r, before, initial, z, fired, sizeof fired);
+    describe_guard(r, c, x, &instant, time, fired, e);
     return false;
 }
 

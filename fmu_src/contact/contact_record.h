@@ -12,9 +12,24 @@
 #include "contact.h"
 
 /* A run of this many events at one instant (no progress in time beyond
- * round-off) is a Zeno run, not a fast one: a physical IWC has at most four
- * switches at one instant, and a fast body's events advance time. */
+ * what the physics and the time's resolution tell apart) is a Zeno run, not a fast
+ * one: a physical IWC has at most four switches at one instant, and a fast body's
+ * events advance time. */
 #define CONTACT_MAX_EVENTS_AT_ONE_INSTANT 100
+
+/* One instant: a chain of events, each within this fraction of the contact's fastest
+ * time scale (contact_time_scale) of the one before, where the state moves by a
+ * thousandth of its contact scales; and never more than 1e-12 relative (round-off of
+ * a time as masters and solvers add steps to it: the instant before the time scale
+ * entered, which it still is at the paper's eps and times). */
+#define CONTACT_INSTANT_OF_TIME_SCALE 1e-3
+#define CONTACT_INSTANT_RELATIVE 1e-12
+
+/* Nor less than the time to which events can be placed at time t: CVODE's root
+ * finding and the explicit pair's stop at 100 ulps of |t| + |h| (explicit_rk.c's
+ * ROOT_TOLERANCE_ULPS), so two events closer than 256 ulps of t cannot be told apart
+ * (at t = 1e6 s: 5.7e-8 s). A contact faster than this is one t cannot resolve. */
+#define CONTACT_EVENT_RESOLUTION_ULPS 256
 
 /* Returns to a surface in a row (events that switched nothing) after which the
  * move off it stops growing: the first trial move is then 2^40 1e-15 = 1e-3 of
@@ -28,7 +43,7 @@ typedef struct {
     int switches, sticks;                        /* mode switches and sticks since initialization */
     double z_at_restart[CONTACT_NZ];                 /* indicators where integration last (re)started */
     bool initial_event;                          /* the event iteration right after initialization */
-    double instant;                              /* time of the current run of events at one instant */
+    double instant;                              /* time of the last event of the current run at one instant */
     int events_at_instant;
     int returns;                                 /* events in a row that switched nothing */
 } ContactRecord;
@@ -82,12 +97,14 @@ void contact_record_start(ContactRecord *r, const Contact *c, double x[], double
 void contact_record_describe_start(const ContactRecord *r, char *text, size_t size);
 
 /* The event update at `time` (contact_event_update), recorded; z holds the indicators
- * at the event. With `floor_jumped` (the floor's speed changed by an input, not
- * at a located v = 0) the body slips the way its new relative velocity points,
- * as at the start, and the rules go on from there. False, with the reason in
- * e->text, if the modes do not settle or too many events fall on one instant. */
+ * at the event, time_unit the model's time per scaled time unit (1 for a scaled model,
+ * sqrt(L/g) in SI), by which the contact's time scale enters the model's time. With
+ * `floor_jumped` (the floor's speed changed by an input, not at a located v = 0) the
+ * body slips the way its new relative velocity points, as at the start, and the rules
+ * go on from there. False, with the reason in e->text, if the modes do not settle or
+ * too many events fall on one instant. */
 bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const double z[CONTACT_NZ], double time,
-                          bool floor_jumped, ModelEvent *e);
+                          double time_unit, bool floor_jumped, ModelEvent *e);
 
 /* NULL if r (restored from bytes) is a record this model can have, else the
  * name of the first variable that is not. */

@@ -27,6 +27,7 @@ struct CoSim {
     const Model *model;  /* parameters and mode for the callbacks */
     SundialsError error; /* CVODE's last error */
     bool started;        /* cosim_start succeeded: cosim_advance may run */
+    long steps, rhs;     /* counted over every advance (cosim_counts) */
 };
 
 static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)
@@ -136,12 +137,19 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
     return true;
 }
 
-/* CVODE's step count so far into *steps; false, with a message, if it cannot say. */
-static bool count_steps(CoSim *cs, long *steps, char *err, size_t n)
+/* CVODE's step and right-hand side counts so far; false, with a message, if it cannot say. */
+static bool count_steps(CoSim *cs, long *steps, long *rhs, char *err, size_t n)
 {
-    if (CVodeGetNumSteps(cs->cvode, steps) == CV_SUCCESS) return true;
-    snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps failed (%s)", cs->error.text);
+    if (CVodeGetNumSteps(cs->cvode, steps) == CV_SUCCESS && CVodeGetNumRhsEvals(cs->cvode, rhs) == CV_SUCCESS)
+        return true;
+    snprintf(err, n, "CVODE could not count its steps: CVodeGetNumSteps or CVodeGetNumRhsEvals failed (%s)", cs->error.text);
     return false;
+}
+
+void cosim_counts(const CoSim *cs, long *steps, long *rhs)
+{
+    *steps = cs ? cs->steps : 0;
+    *rhs = cs ? cs->rhs : 0;
 }
 
 CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n)
@@ -162,11 +170,13 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *st
         snprintf(err, n, "CVODE refused its step budget: CVodeSetMaxNumSteps failed (%s)", cs->error.text);
         return COSIM_FAILED;
     }
-    long before = 0, after = 0;
-    if (!count_steps(cs, &before, err, n)) return COSIM_FAILED;
+    long before = 0, after = 0, rhs_before = 0, rhs_after = 0;
+    if (!count_steps(cs, &before, &rhs_before, err, n)) return COSIM_FAILED;
     const int flag = CVode(cs->cvode, t_end, cs->y, &reached, CV_NORMAL);
-    if (!count_steps(cs, &after, err, n)) return COSIM_FAILED;
+    if (!count_steps(cs, &after, &rhs_after, err, n)) return COSIM_FAILED;
     *steps_left -= after - before;
+    cs->steps += after - before;
+    cs->rhs += rhs_after - rhs_before;
     /* CV_TOO_MUCH_WORK: the budget is spent, and CVODE stands at `reached` with a valid state */
     const bool spent = flag == CV_TOO_MUCH_WORK;
     if (flag < 0 && !spent) {

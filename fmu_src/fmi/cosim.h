@@ -29,4 +29,8 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
  * model's state and *t follow, and *steps_left loses the steps taken. */
 CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n);
 
+/* CVODE's steps and right-hand sides since cs was made (diagnostics: restarts reset
+ * CVODE's own counters, not these). */
+void cosim_counts(const CoSim *cs, long *steps, long *rhs);
+
 #endif

@@ -49,11 +49,11 @@ static const double D1 = -12715105075.0 / 11282082432, D3 = 87487479700.0 / 3270
 void erk_start(Erk *e, const Model *m, double t, double rtol)
 {
     double nominal[NX];
-    (void)t;
     model_get_nominals(m, nominal);
     e->rtol = rtol;
     for (int i = 0; i < NX; ++i) e->atol[i] = rtol * nominal[i];
     model_get_states(m, e->y);
+    model_indicators_at(m, t, e->y, e->z);
     e->h = 0;
     e->stiff_steps = 0;
     e->why = "";
@@ -174,23 +174,19 @@ static bool crossed(double lo, double hi)
     return lo != 0 && (hi == 0 || (hi > 0) != (lo > 0));
 }
 
-static bool any_crossed(const double lo[], const double hi[])
+bool erk_any_crossed(const double lo[], const double hi[])
 {
     for (int i = 0; i < NZ; ++i)
         if (crossed(lo[i], hi[i])) return true;
     return false;
 }
 
-/* The first root in the accepted step (t, t + h], located on the dense output by the Illinois
- * method over all indicators at once (as CVODE's cvRootfind): *t_root is the bracket's right end,
- * where an indicator has changed sign, and x its state. */
-static void locate_root(Erk *e, const Model *m, const Trial *s, double t, double h, double *t_root, double x[NX])
+void erk_locate_root(const Model *m, double t, double h, const double z_lo[], const double z_hi[],
+                     ErkStateAt state_at, const void *path, double *t_root, double x[NX])
 {
-    Dense d;
-    dense_of(e, s, h, &d);
     double glo[NZ + 1], ghi[NZ + 1], gmid[NZ + 1];
-    memcpy(glo, e->z, sizeof glo);
-    model_indicators_at(m, t + h, s->y1, ghi);
+    memcpy(glo, z_lo, sizeof glo);
+    memcpy(ghi, z_hi, sizeof ghi);
     double lo = 0, hi = 1, alpha = 1;
     int last_side = 0;
     const double resolution = ROOT_TOLERANCE_ULPS * DBL_EPSILON * (fabs(t + h) + fabs(h)) / fabs(h);
@@ -201,9 +197,9 @@ static void locate_root(Erk *e, const Model *m, const Trial *s, double t, double
             if (crossed(glo[i], ghi[i])) mid = fmin(mid, hi - (hi - lo) * ghi[i] / (ghi[i] - alpha * glo[i]));
         if (it % 4 == 3 || !(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
         mid = fmin(fmax(mid, lo + 0.5 * resolution), hi - 0.5 * resolution);
-        dense_at(&d, mid, x);
+        state_at(path, mid, x);
         model_indicators_at(m, t + mid * h, x, gmid);
-        const int side = any_crossed(glo, gmid) ? 1 : 2;   /* 1: the root is in (lo, mid] */
+        const int side = erk_any_crossed(glo, gmid) ? 1 : 2;   /* 1: the root is in (lo, mid] */
         if (side == 1) {
             hi = mid;
             memcpy(ghi, gmid, sizeof ghi);
@@ -215,13 +211,30 @@ static void locate_root(Erk *e, const Model *m, const Trial *s, double t, double
         alpha = side != last_side ? 1 : side == 1 ? alpha * 0.5 : alpha * 2;
         last_side = side;
     }
-    if (hi >= 1) {
-        *t_root = t + h;
-        memcpy(x, s->y1, sizeof s->y1);
-    } else {
-        *t_root = t + hi * h;
-        dense_at(&d, hi, x);
-    }
+    *t_root = hi >= 1 ? t + h : t + hi * h;
+    state_at(path, hi, x);
+}
+
+/* The accepted step's dense output as an ErkStateAt: its end exactly y1. */
+typedef struct {
+    Dense d;
+    const double *y1;
+} DensePath;
+
+static void dense_path_at(const void *path, double th, double x[NX])
+{
+    const DensePath *p = path;
+    if (th >= 1) memcpy(x, p->y1, sizeof(double) * NX);
+    else dense_at(&p->d, th, x);
+}
+
+/* The first root in the accepted step (t, t + h], located on the dense output. */
+static void locate_root(Erk *e, const Model *m, const Trial *s, double t, double h, const double z1[], double *t_root,
+                        double x[NX])
+{
+    DensePath p = { .y1 = s->y1 };
+    dense_of(e, s, h, &p.d);
+    erk_locate_root(m, t, h, e->z, z1, dense_path_at, &p, t_root, x);
 }
 
 static ErkResult hand_over(Erk *e, Model *m, const char *why)
@@ -233,10 +246,13 @@ static ErkResult hand_over(Erk *e, Model *m, const char *why)
 
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
+#ifdef MODEL_CLOSED_FLIGHT
+    ModelFlight flight;
+    if (model_flight_begin(m, *t, e->y, &flight)) return erk_flight_advance(e, m, &flight, t, t_end, steps_left);
+#endif
     if (e->h == 0) {   /* a start: the state is the model's */
-        model_get_states(m, e->y);
+        model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
         if (!rhs(e, m, *t, e->y, e->f)) return hand_over(e, m, "a right-hand side is not finite");
-        model_indicators_at(m, *t, e->y, e->z);
         e->h = first_step(e, m, *t, t_end - *t);
         if (!(e->h > 0)) return hand_over(e, m, "a right-hand side is not finite");
     }
@@ -270,9 +286,9 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
         rejected = false;
         double z1[NZ + 1];
         model_indicators_at(m, *t + h, s.y1, z1);
-        if (any_crossed(e->z, z1)) {
+        if (erk_any_crossed(e->z, z1)) {
             double x[NX];
-            locate_root(e, m, &s, *t, h, t, x);
+            locate_root(e, m, &s, *t, h, z1, t, x);
             model_set_states(m, x);
             return ERK_EVENT;
         }

@@ -30,6 +30,7 @@ typedef struct {
     int stiff_steps;                 /* accepted steps held at the stability bound, net of easy ones */
     const char *why;                 /* ERK_HAND_OVER's reason, for the event log */
     long steps, rhs;                 /* counts since the instance was made (diagnostics) */
+    long flight_samples;             /* closed-form flight: samples and root-finding evaluations */
 } Erk;
 
 /* (Re)starts at time t from the model's state, with tolerances rtol and
@@ -40,5 +41,26 @@ void erk_start(Erk *e, const Model *m, double t, double rtol);
  * t_end, at the first root of an indicator, or when *steps_left runs out),
  * the model's state and *t following. */
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left);
+
+/* A path through one interval (t, t + h]: the state at th in [0, 1], exactly the interval's
+ * end at th = 1 (a step's dense output, a closed-form flight). */
+typedef void (*ErkStateAt)(const void *path, double th, double x[MODEL_NX]);
+
+/* True if an indicator has a root between the values lo and hi (CVODE's rule: a change of
+ * sign, or a 0 reached from a value that was not 0). */
+bool erk_any_crossed(const double lo[], const double hi[]);
+
+/* The first root of the model's indicators on `path` over (t, t + h] where they go from z_lo
+ * to z_hi (erk_any_crossed), located to 100 ulps of the time by the Illinois method over all
+ * indicators at once (as CVODE's cvRootfind), within a bound: *t_root is the bracket's right
+ * end, where an indicator has changed sign, and x its state. */
+void erk_locate_root(const Model *m, double t, double h, const double z_lo[], const double z_hi[],
+                     ErkStateAt path_at, const void *path, double *t_root, double x[MODEL_NX]);
+
+#ifdef MODEL_CLOSED_FLIGHT
+/* erk_advance over a flight in closed form (closed_flight.c): the same stops, events and
+ * budget, the state exact. */
+ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, double t_end, long *steps_left);
+#endif
 
 #endif

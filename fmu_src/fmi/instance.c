@@ -9,7 +9,7 @@
 #include "model_description.h"
 
 const char *const instance_log_categories[N_LOG_CATEGORIES] = {
-    "logEvents", "logStatusWarning", "logStatusError", "logAll"
+    "logEvents", "logStatusWarning", "logStatusError", "logStatistics", "logAll"
 };
 
 const char *instance_state_name(InstanceState s)
@@ -45,7 +45,7 @@ Status instance_set_logging(Instance *in, const char *call, bool on, size_t n, c
         while (k < N_LOG_CATEGORIES && !(categories[i] && strcmp(categories[i], instance_log_categories[k]) == 0)) ++k;
         if (k == N_LOG_CATEGORIES)
             return instance_fail(in, call, "unknown log category '%.100s' (known: logEvents, logStatusWarning, "
-                                 "logStatusError, logAll)", categories[i] ? categories[i] : "(NULL)");
+                                 "logStatusError, logStatistics, logAll)", categories[i] ? categories[i] : "(NULL)");
         set[k] = on;
     }
     memcpy(in->log_on, set, sizeof set);
@@ -82,6 +82,20 @@ void instance_log_event(Instance *in, const char *fmt, ...)
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
     emit(in, STATUS_OK, LOG_EVENTS, text);
+}
+
+bool instance_logs_statistics(const Instance *in)
+{
+    return in->log_on[LOG_STATISTICS] || in->log_on[LOG_ALL];
+}
+
+void instance_log_statistics(Instance *in, const char *call, const char *fmt, ...)
+{
+    if (!instance_logs_statistics(in)) return;
+    va_list ap;
+    va_start(ap, fmt);
+    emit_call(in, STATUS_OK, LOG_STATISTICS, call, fmt, ap);
+    va_end(ap);
 }
 
 Status instance_fail(Instance *in, const char *call, const char *fmt, ...)
@@ -133,7 +147,7 @@ void instance_start(Instance *in)
 
 Status instance_event_update(Instance *in, const char *call, bool *states_changed)
 {
-    ModelEvent e;
+    ModelEvent e = { .describe = in->log_on[LOG_EVENTS] || in->log_on[LOG_ALL] };   /* as instance_log_event */
     model_set_time(&in->model, in->time);
     if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);

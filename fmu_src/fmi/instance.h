@@ -29,7 +29,8 @@ typedef enum {
 
 typedef enum { MODEL_EXCHANGE, CO_SIMULATION } Interface;
 
-enum { LOG_EVENTS, LOG_WARNING, LOG_ERROR, LOG_ALL, N_LOG_CATEGORIES };
+/* LOG_STATISTICS: the integrators' work over each Co-Simulation step (instance_step). */
+enum { LOG_EVENTS, LOG_WARNING, LOG_ERROR, LOG_STATISTICS, LOG_ALL, N_LOG_CATEGORIES };
 
 typedef struct Instance Instance;
 
@@ -68,6 +69,12 @@ void instance_free_solver(Instance *in);
 Status instance_set_logging(Instance *in, const char *call, bool on, size_t n, const char *const categories[]);
 
 void instance_log_event(Instance *in, const char *fmt, ...);
+
+/* True if the statistics category (or logAll) is on: only then is anything counted up for it. */
+bool instance_logs_statistics(const Instance *in);
+
+/* Logs "call: text" under logStatistics (when instance_logs_statistics). */
+void instance_log_statistics(Instance *in, const char *call, const char *fmt, ...);
 
 /* Logs "call: reason", enters the Error state, returns STATUS_ERROR. */
 Status instance_fail(Instance *in, const char *call, const char *fmt, ...);

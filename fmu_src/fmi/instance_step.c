@@ -29,7 +29,36 @@
 typedef struct {
     Erk erk;
     CoSim *cvode; /* made when a trajectory is first handed over */
+    long events;  /* event updates in steps (diagnostics) */
 } Integrator;
+
+/* The integrators' work so far (logStatistics): explicit steps and right-hand sides,
+ * closed-form flight evaluations, CVODE's steps and right-hand sides, events. */
+enum { COUNT_STEPS, COUNT_RHS, COUNT_FLIGHT, COUNT_CVODE_STEPS, COUNT_CVODE_RHS, COUNT_EVENTS, N_COUNTS };
+
+static void counts(const Instance *in, long c[N_COUNTS])
+{
+    const Integrator *s = in->solver;
+    for (int i = 0; i < N_COUNTS; ++i) c[i] = 0;
+    if (!s) return;
+    c[COUNT_STEPS] = s->erk.steps;
+    c[COUNT_RHS] = s->erk.rhs;
+    c[COUNT_FLIGHT] = s->erk.flight_samples;
+    cosim_counts(s->cvode, &c[COUNT_CVODE_STEPS], &c[COUNT_CVODE_RHS]);
+    c[COUNT_EVENTS] = s->events;
+}
+
+/* One line per step under logStatistics: the work between the counts before and now. */
+static void log_statistics(Instance *in, const char *call, double t, const long before[N_COUNTS])
+{
+    long now[N_COUNTS];
+    counts(in, now);
+    instance_log_statistics(in, call, "t = %.17g to %.17g: explicit steps %ld, right-hand sides %ld, closed-form "
+                            "flight evaluations %ld, CVODE steps %ld, CVODE right-hand sides %ld, events %ld",
+                            t, in->time, now[COUNT_STEPS] - before[COUNT_STEPS], now[COUNT_RHS] - before[COUNT_RHS],
+                            now[COUNT_FLIGHT] - before[COUNT_FLIGHT], now[COUNT_CVODE_STEPS] - before[COUNT_CVODE_STEPS],
+                            now[COUNT_CVODE_RHS] - before[COUNT_CVODE_RHS], now[COUNT_EVENTS] - before[COUNT_EVENTS]);
+}
 
 void instance_free_solver(Instance *in)
 {
@@ -145,6 +174,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
             return STATUS_OK;
         }
         bool changed;
+        ++((Integrator *)in->solver)->events;
         if (instance_event_update(in, call, &changed) != STATUS_OK || restart(in, call) != STATUS_OK)
             return STATUS_ERROR;
         if (policy == RETURN_AFTER_EVENT) {
@@ -157,6 +187,19 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
     return STATUS_OK;
 }
 #else
+enum { N_COUNTS = 1 };
+
+static void counts(const Instance *in, long c[N_COUNTS])
+{
+    (void)in;
+    c[0] = 0;
+}
+
+static void log_statistics(Instance *in, const char *call, double t, const long before[N_COUNTS])
+{
+    (void)in, (void)call, (void)t, (void)before;
+}
+
 void instance_free_solver(Instance *in)
 {
     in->solver = NULL;
@@ -170,7 +213,11 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
 }
 #endif
 
-/* Communication points closer than this (relative) are the same point. */
+/* Communication points closer than this (relative) are the same point. It forgives a master's
+ * own arithmetic (t += h rounds by up to half an ulp a step; 1e-12 is 4500 ulps of t, thousands
+ * of steps' drift), the same number of ulps at every t. It is no instant of the physics (the
+ * contact record's is, contact_record.h): the state is not moved, only labelled with the
+ * master's time, and an autonomous body does not see the label. */
 #define SAME_TIME 1e-12
 
 Status instance_step(Instance *in, const char *call, double t, double h, StepPolicy policy, StepEnd *end)
@@ -183,7 +230,11 @@ Status instance_step(Instance *in, const char *call, double t, double h, StepPol
         return instance_fail(in, call, "communicationStepSize = %g must be finite and > 0", h);
     in->time = t;    /* the master's point: where the step starts, and nothing it reports comes before */
     model_step_begin(&in->model, t);
+    const bool statistics = instance_logs_statistics(in);
+    long before[N_COUNTS];
+    if (statistics) counts(in, before);
     const Status s = integrate(in, call, t + h, policy, end);
+    if (statistics) log_statistics(in, call, t, before);
     if (s == STATUS_ERROR) return s;
     in->last_successful_time = in->time;   /* a Discard's too: the state is valid there */
     model_step_end(&in->model, fmax(in->time - t, 0));   /* the part it completed: to an event, a spent budget */

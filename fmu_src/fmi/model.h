@@ -103,6 +103,26 @@ void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX],
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[]);
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
 
+/* ------------------------------------- closed-form flight (optional) */
+
+/* A model whose config.h defines MODEL_CLOSED_FLIGHT, and the type ModelFlight, knows its
+ * free flight in closed form (a rigid body under gravity and constant loads: translation
+ * at constant acceleration, rotation at constant angular acceleration). Co-Simulation then
+ * advances such a flight exactly (closed_flight.c), not with the explicit pair; a model
+ * without it (no MODEL_CLOSED_FLIGHT) is integrated by the pair throughout. */
+#ifdef MODEL_CLOSED_FLIGHT
+/* True if the current mode at the model's inputs (held over a Co-Simulation step) is such
+ * a flight, with *f made ready to give its state from x0 at time t0; false otherwise. */
+bool model_flight_begin(const Model *m, double t0, const double x0[MODEL_NX], ModelFlight *f);
+
+/* The flight's exact state at time t (the model's indicators are model_indicators_at). */
+void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX]);
+
+/* The longest time, from t on, over which each event indicator's sign at the two ends
+ * shows whether it has a root (the physics bounds it: the rotation, the gap's curvature). */
+double model_flight_sample_step(const ModelFlight *f, double t);
+#endif
+
 /* ------------------------------------------- step means (Co-Simulation) */
 
 /* The step that began at model_step_begin is done, after `elapsed` (> 0; 0 when
@@ -127,7 +147,8 @@ void model_start(Model *m, double time, char *text, size_t size);
 void model_begin_integration(Model *m);
 
 /* The event update at `time`: new modes iterated to a fixpoint, the state
- * moved off every switching surface, the switch recorded. False, with the
+ * moved off every switching surface, the switch recorded, and e->text saying
+ * so when the caller asks (e->describe: it logs events). False, with the
  * reason in e->text, if the modes do not settle or too many events fall on
  * one instant (a Zeno run). */
 bool model_event_update(Model *m, double time, ModelEvent *e);

@@ -7,9 +7,10 @@
 #include <stdbool.h>
 
 typedef struct {
+    bool describe;       /* in: the caller logs events, so text says what happened (a failure's always) */
     bool states_changed; /* the state was moved: integration must restart */
     bool switched;       /* the mode changed */
-    char text[768];      /* what happened, for the event log; or why it failed */
+    char text[768];      /* what happened, for the event log (if describe); or why it failed */
 } ModelEvent;
 
 #endif

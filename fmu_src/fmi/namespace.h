@@ -41,6 +41,7 @@
 #define contact_record_new NAMESPACED(contact_record_new)
 #define contact_record_start NAMESPACED(contact_record_start)
 #define contact_spring_energy NAMESPACED(contact_spring_energy)
+#define contact_time_scale NAMESPACED(contact_time_scale)
 
 /* rod.c, rod_partials.c: the rod, the core's first body */
 #define rod_coefficient_outputs NAMESPACED(rod_coefficient_outputs)
@@ -48,6 +49,9 @@
 #define rod_contact NAMESPACED(rod_contact)
 #define rod_derivatives NAMESPACED(rod_derivatives)
 #define rod_energy NAMESPACED(rod_energy)
+#define rod_flight NAMESPACED(rod_flight)
+#define rod_flight_at NAMESPACED(rod_flight_at)
+#define rod_flight_sample_step NAMESPACED(rod_flight_sample_step)
 #define rod_event_indicators NAMESPACED(rod_event_indicators)
 #define rod_force_bracket NAMESPACED(rod_force_bracket)
 #define rod_compliance NAMESPACED(rod_compliance)
@@ -79,6 +83,9 @@
 #define model_get NAMESPACED(model_get)
 #define model_get_derivatives NAMESPACED(model_get_derivatives)
 #define model_get_indicators NAMESPACED(model_get_indicators)
+#define model_flight_at NAMESPACED(model_flight_at)
+#define model_flight_begin NAMESPACED(model_flight_begin)
+#define model_flight_sample_step NAMESPACED(model_flight_sample_step)
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)
@@ -114,6 +121,8 @@
 #define instance_get NAMESPACED(instance_get)
 #define instance_log_categories NAMESPACED(instance_log_categories)
 #define instance_log_event NAMESPACED(instance_log_event)
+#define instance_log_statistics NAMESPACED(instance_log_statistics)
+#define instance_logs_statistics NAMESPACED(instance_logs_statistics)
 #define instance_model NAMESPACED(instance_model)
 #define instance_read_array NAMESPACED(instance_read_array)
 #define instance_reset NAMESPACED(instance_reset)
@@ -129,12 +138,16 @@
 #define instance_step NAMESPACED(instance_step)
 #define instance_state_name NAMESPACED(instance_state_name)
 
-/* explicit_rk.c: Co-Simulation's explicit pair */
+/* explicit_rk.c, closed_flight.c: Co-Simulation's explicit pair and closed-form flight */
 #define erk_advance NAMESPACED(erk_advance)
+#define erk_any_crossed NAMESPACED(erk_any_crossed)
+#define erk_flight_advance NAMESPACED(erk_flight_advance)
+#define erk_locate_root NAMESPACED(erk_locate_root)
 #define erk_start NAMESPACED(erk_start)
 
 /* cosim.c: Co-Simulation's integrator */
 #define cosim_advance NAMESPACED(cosim_advance)
+#define cosim_counts NAMESPACED(cosim_counts)
 #define cosim_free NAMESPACED(cosim_free)
 #define cosim_new NAMESPACED(cosim_new)
 #define cosim_start NAMESPACED(cosim_start)

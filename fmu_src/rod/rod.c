@@ -13,13 +13,24 @@
 
 #include <math.h>
 
+/* eq coeffs' a and b, with the applied loads, at sin s and cos c of theta */
+static double coeff_a(const RodParams *p, double s, double c, double phi)
+{
+    return -phi * phi * c + p->f_x - p->alpha * s * p->tau;
+}
+
+static double coeff_b(const RodParams *p, double s, double c, double phi)
+{
+    return -1 + phi * phi * s + p->f_y - p->alpha * c * p->tau;
+}
+
 RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
 {
     const double s = sin(theta), c = cos(theta), al = p->alpha, mu = p->mu;
     const double k = 1 + al * s * s;
     RodCoeffs r;
-    r.a = -phi * phi * c + p->f_x - al * s * p->tau;     /* eq coeffs, with the applied loads */
-    r.b = -1 + phi * phi * s + p->f_y - al * c * p->tau;
+    r.a = coeff_a(p, s, c, phi);
+    r.b = coeff_b(p, s, c, phi);
     r.q_plus = al * s * c - mu * k;
     r.q_minus = al * s * c + mu * k;
     r.p_plus = 1 + al * c * c - mu * al * s * c;
@@ -40,13 +51,15 @@ static void rod_evaluate(const void *params, const double x[], BodyState *s)
 {
     const RodParams *p = params;
     const double th = x[ROD_THETA], phi = x[ROD_PHI], sn = sin(th), cs = cos(th), al = p->alpha;
-    const RodCoeffs k = rod_coeffs(p, th, phi);
+    /* a and b from this sin and cos: the right-hand side's hot path needs none of rod_coeffs'
+     * other coefficients, nor sin and cos twice */
+    const double a = coeff_a(p, sn, cs, phi), b = coeff_b(p, sn, cs, phi);
     const double G_TT = 1 + al * sn * sn, G_TN = al * sn * cs, G_NN = 1 + al * cs * cs;
     *s = (BodyState){ .x = x[ROD_X], .y = x[ROD_Y], .v = x[ROD_V], .w = x[ROD_W],
-                      .free = { k.a, k.b, al * p->tau },
+                      .free = { a, b, al * p->tau },
                       .normal = { G_TN, G_NN, -al * cs },
                       .friction = { G_TT, G_TN, -al * sn },
-                      .a = k.a, .b = k.b,
+                      .a = a, .b = b,
                       .a_scale = phi * phi * fabs(cs) + fabs(p->f_x) + al * fabs(sn * p->tau),
                       .G_TT = G_TT, .G_TN = G_TN, .G_NN = G_NN };
     const double Xd = x[ROD_V] + phi * sn, Yd = x[ROD_W] + phi * cs;
@@ -148,6 +161,55 @@ bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], doub
 {
     const Contact c = rod_contact(p);
     return contact_move_off_surfaces(&c, m, x, margin, moved);
+}
+
+/* ------------------------------------------- the free flight in closed form */
+
+RodFlight rod_flight(double length, double ax, double ay, double angular, double t0, const double x0[ROD_NX])
+{
+    RodFlight f = { .length = length, .ax = ax, .ay = ay, .angular = angular, .t0 = t0,
+                    .sin0 = sin(x0[ROD_THETA]), .cos0 = cos(x0[ROD_THETA]) };
+    for (int i = 0; i < ROD_NX; ++i) f.x0[i] = x0[i];
+    return f;
+}
+
+/* The end is the centre plus l (cos theta, -sin theta) (eq coord): with the centre's motion
+ * at constant acceleration and theta = theta0 + phi0 s + angular s^2/2, each state is x0's
+ * plus an increment in which sin theta - sin theta0 = cos0 sin D - 2 sin0 sin^2(D/2) and
+ * cos theta - cos theta0 = -sin0 sin D - 2 cos0 sin^2(D/2) (D = theta - theta0) lose no
+ * digits to cancellation: near the floor y is of order eps^2, its increments too. */
+void rod_flight_at(const RodFlight *f, double t, double x[ROD_NX])
+{
+    const double s = t - f->t0, l = f->length, phi0 = f->x0[ROD_PHI];
+    const double turn = s * (phi0 + 0.5 * f->angular * s), phi = phi0 + f->angular * s;
+    const double half = sin(0.5 * turn), versine = 2 * half * half, sine = sin(turn);
+    const double dsin = f->cos0 * sine - f->sin0 * versine, dcos = -f->sin0 * sine - f->cos0 * versine;
+    /* the end's velocity is the centre's, (v + l phi sin, w + l phi cos) at t0, minus l phi (sin, cos) */
+    x[ROD_X] = f->x0[ROD_X] + s * (f->x0[ROD_V] + l * phi0 * f->sin0 + 0.5 * f->ax * s) + l * dcos;
+    x[ROD_V] = f->x0[ROD_V] + f->ax * s - l * (phi * dsin + (phi - phi0) * f->sin0);
+    x[ROD_Y] = f->x0[ROD_Y] + s * (f->x0[ROD_W] + l * phi0 * f->cos0 + 0.5 * f->ay * s) - l * dsin;
+    x[ROD_W] = f->x0[ROD_W] + f->ay * s - l * (phi * dcos + (phi - phi0) * f->cos0);
+    x[ROD_THETA] = f->x0[ROD_THETA] + turn;
+    x[ROD_PHI] = phi;
+}
+
+/* Within such a time each event indicator of a flight (the gap y, the force bracket, linear in
+ * y and w above the floor, v and w: contact.c) is a quadratic in time plus an arc of sin and cos
+ * of at most pi/8, so it has at most one root unless it turns there; and where the gap turns,
+ * so does the end's height, at the root of w, itself an indicator (the dip bottom): a touch
+ * and go of the end between two samples shows as w's root. */
+#define TURN_PER_SAMPLE (3.14159265358979323846 / 8)
+#define DROP_PER_SAMPLE (1.0 / 32)
+
+double rod_flight_sample_step(const RodFlight *f, double t)
+{
+    const double phi = fabs(f->x0[ROD_PHI] + f->angular * (t - f->t0)), ang = fabs(f->angular);
+    /* phi s + ang s^2/2 = TURN, solved without cancellation */
+    const double by_turn = 2 * TURN_PER_SAMPLE / (phi + sqrt(phi * phi + 2 * ang * TURN_PER_SAMPLE));
+    /* the end's acceleration is at most the centre's plus l (phi^2 + ang): K s^2/2 = l DROP */
+    const double K = hypot(f->ax, f->ay) + f->length * (phi * phi + ang);
+    const double by_drop = K > 0 ? sqrt(2 * DROP_PER_SAMPLE * f->length / K) : INFINITY;
+    return fmin(by_turn, by_drop);
 }
 
 /* ------------------------------------------- the rod's analytic Jacobian */

@@ -103,4 +103,23 @@ void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
  * state's nominal. */
 bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved);
 
+/* The rod in free flight (no contact force) under constant loads, in closed form: its
+ * centre of mass moves at the constant acceleration (ax, ay), the rod turns at the constant
+ * angular acceleration `angular`, from the state x0 at t0 (states in the order above, any
+ * units: `length` is the half-length l, 1 in the paper's units). */
+typedef struct {
+    double length, ax, ay, angular;
+    double t0, x0[ROD_NX];
+    double sin0, cos0; /* of theta at t0 */
+} RodFlight;
+
+RodFlight rod_flight(double length, double ax, double ay, double angular, double t0, const double x0[ROD_NX]);
+
+/* The state at time t; exactly x0 at t0 (increments from x0, free of cancellation). */
+void rod_flight_at(const RodFlight *f, double t, double x[ROD_NX]);
+
+/* A time from t on within which the rod turns by at most pi/8 and gravity moves its end by
+ * at most l/32 from its tangent (rod.c says why the indicators' roots then show). */
+double rod_flight_sample_step(const RodFlight *f, double t);
+
 #endif

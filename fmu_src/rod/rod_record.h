@@ -37,11 +37,12 @@ static inline void rod_record_start(ContactRecord *r, const RodParams *p, double
     contact_record_start(r, &c, x, time);
 }
 
+/* time_unit: the model's time per the rod's scaled time (1 for PainleveRod, sqrt(l/g) in SI). */
 static inline bool rod_record_event(ContactRecord *r, const RodParams *p, double x[ROD_NX], const double z[ROD_NZ],
-                                    double time, bool floor_jumped, ModelEvent *e)
+                                    double time, double time_unit, bool floor_jumped, ModelEvent *e)
 {
     const Contact c = rod_contact(p);
-    return contact_record_event(r, &c, x, z, time, floor_jumped, e);
+    return contact_record_event(r, &c, x, z, time, time_unit, floor_jumped, e);
 }
 
 #endif

@@ -62,9 +62,40 @@ static void test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_th
     CHECK(found >= 3, "only %d of 8 angles have a double exactly on the fold", found);
 }
 
+/* The largest rate |lambda| of y'' = -P (y/eps^2 + delta w/eps), one mode's normal motion on the
+ * linear law with P its response (p_+, p_-, S_w): lambda^2 + (delta P/eps) lambda + P/eps^2 = 0. */
+static double fastest_rate(double P, double delta, double eps)
+{
+    const double b = delta * P / eps, c = P / (eps * eps), disc = b * b / 4 - c;
+    return disc >= 0 ? fabs(b) / 2 + sqrt(disc) : sqrt(c);   /* real roots, or a complex pair of modulus sqrt(c) */
+}
+
+static void test_the_contacts_time_scale_is_its_fastest_modes_rate(void)
+{
+    /* contact_time_scale bounds 1/|lambda| of the fastest mode from below by the rates of the
+     * paper's coefficients (rod.c's formulas), within the factor 3 its bound |b| + sqrt|c| allows. */
+    for (double delta = 0; delta <= 100; delta = delta ? 10 * delta : 0.01)
+        for (double theta = 0.1; theta < 3; theta += 0.4) {
+            const RodParams p = { .alpha = 3, .mu = 2, .delta = delta, .epsilon = 1e-4 };
+            const RodCoeffs k = rod_coeffs(&p, theta, 0.7);
+            double fastest = 0;
+            const double P[] = { k.p_plus, k.p_minus, k.S_w };
+            for (int i = 0; i < 3; ++i) fastest = fmax(fastest, fastest_rate(fabs(P[i]), delta, p.epsilon));
+            for (double y = 0; y <= 1e-3; y += 1e-3) {   /* touching, and in flight: the law's touch-down slopes */
+                const double x[ROD_NX] = { [ROD_Y] = y, [ROD_W] = -0.1, [ROD_THETA] = theta, [ROD_PHI] = 0.7 };
+                const Contact c = rod_contact(&p);
+                const double tau = contact_time_scale(&c, x);
+                CHECK(tau <= 1 / fastest * (1 + 1e-12) && tau >= 1 / (3 * fastest),
+                      "delta = %g, theta = %g, y = %g: time scale %g, fastest mode's 1/rate %g", delta, theta, y, tau,
+                      1 / fastest);
+            }
+        }
+}
+
 int main(void)
 {
     test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_the_fold_depends_on();
+    test_the_contacts_time_scale_is_its_fastest_modes_rate();
     printf("rod_unit: %s\n", failures ? "FAILED" : "all checks passed");
     return failures != 0;
 }

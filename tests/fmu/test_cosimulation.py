@@ -113,10 +113,12 @@ def test_a_step_beyond_the_call_budget_is_discarded_where_it_stopped_and_the_run
     assert np.all(np.diff(energy) <= 1e-6 * energy0)
 
 
-def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(loaded):
-    # An importer that keeps entering event mode without advancing time: the guard ends it.
+@pytest.mark.parametrize("start_time", [0.0, 1e6])
+def test_events_at_one_instant_end_as_a_zeno_run_and_the_instance_survives(loaded, start_time):
+    # An importer that keeps entering event mode without advancing time: the guard ends it, at
+    # t = 1e6 too, where the time still resolves the rod's contact (eps = 1e-3 >> 256 ulps of t).
     rod = Rod(loaded)
-    rod.initialize()
+    rod.initialize(start_time)
     with pytest.raises(FMICallException):
         for _ in range(100):
             rod.fmu.enterEventMode()
@@ -204,7 +206,8 @@ def test_a_faster_flat_spin_on_the_contact_boundary_runs_on_and_only_the_solver_
     # Zeno guard ended the run. The grazing decisions (docs/bounded_calls.md) now move the state off the
     # boundary past the solver's error, so the run goes on to the end. Nothing does work on the rod
     # (friction and the damper take energy), so the energy may move only by the solver's error, which
-    # falls with the tolerance.
+    # falls with the tolerance; where the flights are in closed form (no solver error) and the contacts
+    # only take energy, only by rounding at either tolerance (a few ulps of it).
     rises = []
     for tolerance in (1e-8, 1e-10):
         r = fmpy.simulate_fmu(fmu_path, fmi_type="CoSimulation", relative_tolerance=tolerance, output_interval=1e-5,
@@ -212,7 +215,7 @@ def test_a_faster_flat_spin_on_the_contact_boundary_runs_on_and_only_the_solver_
                               output=["energy"])
         assert r["time"][-1] == pytest.approx(0.01)
         rises.append(np.max(np.diff(r["energy"])) / r["energy"][0])
-    assert rises[1] < 1e-8 and rises[1] < rises[0] / 5, rises
+    assert rises[1] < 1e-8 and (rises[1] < rises[0] / 5 or max(rises) < 64 * np.finfo(float).eps), rises
 
 
 def test_a_stiffly_damped_soft_contact_runs_to_the_end_alike_in_both_interfaces(fmu_path):

@@ -16,6 +16,11 @@
 #define MODEL_NX ROD_NX
 #define MODEL_NZ ROD_NZ
 
+/* The rod's flight is a rigid body's under gravity: Co-Simulation advances it in closed
+ * form (model.h, rod.h's RodFlight). */
+#define MODEL_CLOSED_FLIGHT
+typedef RodFlight ModelFlight;
+
 /* Parameter ranges keep every derived quantity finite in double precision:
  * F_N ~ y/eps^2 (kappa y^2/eps^3) and phi^2 must not overflow. kappa, beta >= 0
  * keep the compliance law h decreasing in y and w where the contact acts (rod.h). */

@@ -122,9 +122,31 @@ void model_begin_integration(Model *m)
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     model_update(m);
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, false, e);
+    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, 1.0, false, e);
     model_touch(m);
     return ok;
+}
+
+/* ------------------------------------- closed-form flight (model.h) */
+
+/* In flight the rod's centre of mass falls at (f_x, f_y - 1) (weight 1 in units of m g, l = 1)
+ * and it turns at alpha tau (eq dynrodsc without contact force: rod.h's loads, 0 here). */
+bool model_flight_begin(const Model *m, double t0, const double x0[MODEL_NX], ModelFlight *f)
+{
+    if (m->run.mode.contact) return false;
+    const RodParams *p = &m->params;
+    *f = rod_flight(1, p->f_x, p->f_y - 1, p->alpha * p->tau, t0, x0);
+    return true;
+}
+
+void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX])
+{
+    rod_flight_at(f, t, x);
+}
+
+double model_flight_sample_step(const ModelFlight *f, double t)
+{
+    return rod_flight_sample_step(f, t);
 }
 
 /* ------------------------------------------- step means (Co-Simulation) */

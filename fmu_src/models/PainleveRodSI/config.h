@@ -16,6 +16,11 @@
 #define MODEL_NX ROD_NX
 #define MODEL_NZ ROD_NZ
 
+/* In flight the rod is a rigid body under gravity and the loads F_x, F_y, tau, which a
+ * Co-Simulation step holds: Co-Simulation advances it in closed form (model.h, rod.h). */
+#define MODEL_CLOSED_FLIGHT
+typedef RodFlight ModelFlight;
+
 /* Bounds that keep every scaled quantity finite: lengths, speeds, forces. */
 #define SI_BOUND 1e9
 

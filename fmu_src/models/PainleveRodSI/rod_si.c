@@ -224,6 +224,28 @@ void model_step_end(Model *m, double elapsed)
     model_touch(m);
 }
 
+/* ------------------------------------- closed-form flight (model.h) */
+
+/* Free of the floor (which enters only the gap and the contact law), the rod's centre falls
+ * at (F_x/m, F_y/m - g) and it turns at tau/J, the loads held over the step (they change
+ * only at communication points, where the integrator restarts). */
+bool model_flight_begin(const Model *m, double t0, const double x0[MODEL_NX], ModelFlight *f)
+{
+    if (m->run.mode.contact) return false;
+    *f = rod_flight(m->l, m->F_x / m->m, m->F_y / m->m - m->g, m->tau / m->J, t0, x0);
+    return true;
+}
+
+void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX])
+{
+    rod_flight_at(f, t, x);
+}
+
+double model_flight_sample_step(const ModelFlight *f, double t)
+{
+    return rod_flight_sample_step(f, t);
+}
+
 /* ------------------------------------------------------- modes, events */
 
 void model_decide_initial_mode(Model *m)
@@ -258,7 +280,7 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     /* A belt that changed speed leaves the rod's own velocity as it was. */
     const bool belt_jumped = m->v_floor != m->v_floor_decided;
     m->v_floor_decided = m->v_floor;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, belt_jumped, e);
+    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, sqrt(m->l / m->g), belt_jumped, e);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];

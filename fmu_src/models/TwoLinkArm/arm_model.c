@@ -237,7 +237,7 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     const Contact c = contact_of(&m->body, &m->law);
     double xs[ARM_NX];
     memcpy(xs, m->xs, sizeof xs);
-    const bool ok = contact_record_event(&m->run, &c, xs, m->z, time, false, e);
+    const bool ok = contact_record_event(&m->run, &c, xs, m->z, time, time_unit(m), false, e);
     unscale_changes(m, xs);
     model_touch(m);
     return ok;
