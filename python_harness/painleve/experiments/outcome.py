@@ -113,7 +113,8 @@ def flight_back_to_floor(state):
     """The free flight run back from `state` (in flight above the floor) to its last
     y = 0: (time offset s <= 0, state there). Closed form: the centre of mass
     (x - cos theta, y + sin theta) falls freely, the rod spins uniformly."""
-    th, ph, y, w, v = (float(state[k]) for k in ("theta", "phi", "y", "w", "v"))
+    th, ph = float(state["theta"]), float(state["phi"])
+    y, w, v = float(state["y"]), float(state["w"]), float(state["v"])
     # Written as increments from `state` (sin(th + ph s) - sin th = 2 cos(th + ph s/2) sin(ph s/2)):
     # at a return with w = O(eps) the height's O(1) terms would cancel to a rounding error of
     # 1e-16 / w in the time, O(1e-10) at eps = 1e-6 (issue #28).

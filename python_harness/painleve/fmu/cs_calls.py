@@ -69,36 +69,45 @@ class DirectCalls:
         self._counts_vr = (c_uint * 2)(vr["switches"], vr["sticks"])
         self._boolean, self._integers = (c_int * 1)(), (c_int * 2)()
 
-    def _check(self, name, status):
-        if status > FMI2_WARNING:                # as fmpy's _call
-            raise FMICallException(function=name, status=status)
-
+    # Each call's status is checked where it returns, as fmpy's _call does: a status above fmi2Warning
+    # raises before the next call (written out, not a helper: 11 calls a case).
     def reset(self):
-        self._check("fmi2Reset", self._reset(self.component))
+        if (status := self._reset(self.component)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2Reset", status=status)
 
     def start(self, start_values, relative_tolerance):
-        c, check = self.component, self._check
+        c = self.component
         names = tuple(start_values)
         vr = self._start_vr.get(names)
         if vr is None:
             vr = self._start_vr[names] = (c_uint * len(names))(*(self.vr[k] for k in names))
-        check("fmi2SetupExperiment", self._setup(c, FMI2_TRUE, relative_tolerance, 0.0, 0, 0.0))
-        check("fmi2SetReal", self._set_real(c, vr, len(names), (c_double * len(names))(*start_values.values())))
-        check("fmi2EnterInitializationMode", self._enter(c))
-        check("fmi2ExitInitializationMode", self._exit(c))
-        check("fmi2GetBoolean", self._get_boolean(c, self._contact_vr, 1, self._boolean))
-        contact = bool(self._boolean[0])
-        check("fmi2GetInteger", self._get_integer(c, self._mode_vr, 1, self._integers))
-        return contact, int(self._integers[0])
+        if (status := self._setup(c, FMI2_TRUE, relative_tolerance, 0.0, 0, 0.0)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2SetupExperiment", status=status)
+        values = (c_double * len(names))(*start_values.values())
+        if (status := self._set_real(c, vr, len(names), values)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2SetReal", status=status)
+        if (status := self._enter(c)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2EnterInitializationMode", status=status)
+        if (status := self._exit(c)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2ExitInitializationMode", status=status)
+        if (status := self._get_boolean(c, self._contact_vr, 1, self._boolean)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2GetBoolean", status=status)
+        if (status := self._get_integer(c, self._mode_vr, 1, self._integers)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2GetInteger", status=status)
+        return bool(self._boolean[0]), int(self._integers[0])
 
     def step(self, t, h):
         c = self.component
-        self._check("fmi2DoStep", self._do_step(c, t, h, FMI2_TRUE))
-        self._check("fmi2GetReal", self._get_real(c, self._read_vr, len(self._read_vr), self._read))
+        if (status := self._do_step(c, t, h, FMI2_TRUE)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2DoStep", status=status)
+        if (status := self._get_real(c, self._read_vr, len(self._read_vr), self._read)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2GetReal", status=status)
         return self._read[:]
 
     def end(self):
         c = self.component
-        self._check("fmi2GetInteger", self._get_integer(c, self._counts_vr, 2, self._integers))
-        self._check("fmi2GetBoolean", self._get_boolean(c, self._contact_vr, 1, self._boolean))
+        if (status := self._get_integer(c, self._counts_vr, 2, self._integers)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2GetInteger", status=status)
+        if (status := self._get_boolean(c, self._contact_vr, 1, self._boolean)) > FMI2_WARNING:
+            raise FMICallException(function="fmi2GetBoolean", status=status)
         return self._integers[0], self._integers[1], bool(self._boolean[0])
