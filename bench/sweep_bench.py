@@ -9,6 +9,7 @@ FMI calls straight into the FMU, its row a tuple).
     .venv/bin/python bench/sweep_bench.py               # prints the markdown table
     .venv/bin/python bench/sweep_bench.py 10000 auto    # one run: one JSON line
     .venv/bin/python bench/sweep_bench.py profile       # where a serial sweep's time goes (cProfile)
+    .venv/bin/python bench/sweep_bench.py same 3000     # main's code and today's rows, bit for bit
 
 Main's rows run in a Python started with -S and main's code first on PYTHONPATH (the
 editable install's import hook would otherwise load today's), which its cluster's
@@ -185,9 +186,48 @@ def profile(fmu, n):
                      total - sum(s for _, s in parts))], total, plain
 
 
+# `same`: cases inside and outside the theorems, and some that fail (no return within the horizon).
+WIDE = {"theta0": "0.3:1.5", "phi0": "0:2", "w10": "-2:1", "epsilon": "1e-5:1e-2:log", "delta": "0:2"}
+
+
+def rows(fmu, n, out):
+    """The rows of n random WIDE cases, run serially in chunks of 1,000, written to the Parquet file `out`."""
+    from painleve.sweep.run import run_sweep
+    from painleve.sweep.spec import SweepSpec
+    from painleve.sweep.store import ResultStore
+    with tempfile.TemporaryDirectory() as tmp:
+        run_sweep(SweepSpec.from_texts(WIDE, samples=n, seed=11), fmu, pathlib.Path(tmp) / "rows.parquet",
+                  fmi_type="CoSimulation", serial=True, progress=False, batch=1000)
+        ResultStore(pathlib.Path(tmp) / "rows.parquet").read().to_parquet(out)
+
+
+def same(fmu, n):
+    """Whether main's code and today's give the same rows, every float to the bit, on n WIDE cases."""
+    import numpy as np
+    import pandas as pd
+    with tempfile.TemporaryDirectory() as tmp:
+        main = main_code(tmp)
+        site = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"]}
+        for name, flags, env in (("main", ["-S"], {**os.environ, "PYTHONPATH": os.pathsep.join([main, *sorted(site)])}),
+                                 ("today", [], None)):
+            subprocess.run([sys.executable, *flags, __file__, "rows", str(n), str(fmu), f"{tmp}/{name}.parquet"],
+                           check=True, env=env)
+        a, b = (pd.read_parquet(f"{tmp}/{name}.parquet") for name in ("main", "today"))
+    pd.testing.assert_frame_equal(a, b, check_exact=True)
+    for name, column in a.items():
+        if column.dtype == "float64":
+            assert np.array_equal(column.to_numpy().view(np.int64), b[name].to_numpy().view(np.int64)), name
+    return f"{n:,} cases ({a['status'].value_counts().to_dict()}): main's code and today's rows bitwise equal"
+
+
 if __name__ == "__main__":
     root = pathlib.Path(__file__).resolve().parents[1]
-    if sys.argv[1:2] == ["profile"]:
+    built = str(root / "build" / "PainleveRod.fmu")
+    if sys.argv[1:2] == ["rows"]:
+        rows(sys.argv[3], int(sys.argv[2]), sys.argv[4])
+    elif sys.argv[1:2] == ["same"]:
+        print(same(built, int(sys.argv[2]) if len(sys.argv) > 2 else 3000))
+    elif sys.argv[1:2] == ["profile"]:
         print(json.dumps(profile(sys.argv[2] if len(sys.argv) > 2 else str(root / "build" / "PainleveRod.fmu"),
                                  10_000)))
     elif len(sys.argv) > 1:
