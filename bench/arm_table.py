@@ -16,26 +16,24 @@ the same instant, relative to v0), us per case (median over cases of the median 
 repeats; fmpy's calls included), the fixed cost (the same run without its fmi2DoStep) and
 the FMU's switches."""
 import pathlib
-import statistics
 import sys
-import time
 
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(HERE))
 
 from helpers.arm_lagrange import Arm, floor_angle, rates          # noqa: E402
 from helpers.two_link_arm_iwc import simulate                       # noqa: E402
+from one_step_table import header, row, timed_run                     # noqa: E402
 from painleve.fmu.experiment import Experiment                       # noqa: E402
 
 ARM_FMU = ROOT / "build" / "TwoLinkArm.fmu"
 ARM = Arm(H=0.3, mu=1.5)
 CASES = [(theta1, v0, delta) for theta1, v0 in ((2.9, 0.3), (0.2, 0.5)) for delta in (0.5, 1.0)]
 EPSILONS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
-STATES = ("theta1", "theta2", "omega1", "omega2")
-REPEATS = 11
 WHERE_THE_TIME_GOES = (
     "Where the arm's time goes (perf over 53,000 runs of its four cases at eps = 1e-4, default tolerance): 57"
     ' % in the FMU, its own code 33 % and libm 24 % (the sines and cosines of the two angles and of their '
@@ -67,48 +65,44 @@ def reference(theta1, v0, eps, delta):
     return out["t"], out["w"]
 
 
+def read_tip(fmu, vr):
+    """(w, contact) of the tip."""
+    return fmu.getReal([vr["w"]])[0], fmu.getBoolean([vr["contact"]])[0]
+
+
 def run_once(ex, values, rtol, stop, step=True):
     """One run; (seconds, w at `stop`, switches, contact at `stop`)."""
-    vr, fmu = ex.vr, ex.instance
-    t0 = time.perf_counter()
-    fmu.reset()
-    fmu.setupExperiment(tolerance=rtol, startTime=0.0)
-    fmu.setReal([vr[k] for k in values], list(values.values()))
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
-    if step:
-        fmu.doStep(0.0, stop)
-    w = fmu.getReal([vr["w"]])[0]
-    switches = fmu.getInteger([vr["switches"]])[0]
-    contact = fmu.getBoolean([vr["contact"]])[0]
-    return time.perf_counter() - t0, w, switches, contact
+    seconds, (w, contact), switches = timed_run(ex, values, rtol, stop, read_tip, step)
+    return seconds, w, switches, contact
 
 
-def row(ex, eps, rtol, label, refs):
-    walls, fixed, errs, switches = [], [], [], []
+def error(eps, theta1, v0, w_ref):
+    """|w - w_ref| / v0 of an outcome (w, contact) at the reference's return."""
+    def of(outcome):
+        w, contact = outcome
+        assert not contact, f"the tip is still in contact at the reference's return (eps {eps}, case {theta1})"
+        return abs(w - w_ref) / v0
+    return of
+
+
+def arm_row(ex, eps, rtol, label, refs):
+    cases = []
     for (theta1, v0, delta), (t_ref, w_ref) in zip(CASES, refs):
         values = start(theta1, v0, eps, delta)[2]
-        runs = [run_once(ex, values, rtol, t_ref) for _ in range(REPEATS)]
-        assert not runs[0][3], f"the tip is still in contact at the reference's return (eps {eps}, case {theta1})"
-        walls.append(statistics.median(r[0] for r in runs))
-        fixed.append(statistics.median(run_once(ex, values, rtol, t_ref, step=False)[0] for _ in range(REPEATS)))
-        errs.append(abs(runs[0][1] - w_ref) / v0)
-        switches.append(runs[0][2])
-    return (f"| {eps:.0e} | {rtol:.0e} ({label}) | {max(errs):.1e} | {1e6 * statistics.median(walls):.0f} "
-            f"({1e6 * max(walls):.0f}) | {1e6 * statistics.median(fixed):.0f} | {statistics.median(switches):.0f} |")
+        cases.append((lambda step, values=values, t_ref=t_ref: timed_run(ex, values, rtol, t_ref, read_tip, step),
+                      error(eps, theta1, v0, w_ref)))
+    return row(eps, rtol, label, cases)
 
 
 def arm_markdown(epsilons=EPSILONS):
     lines = ["## The two-link arm (TwoLinkArm): one fmi2DoStep per case from Python", "",
-             __doc__.split("\n\n", 2)[2].replace("\n", " "), "",
-             "| eps | rtol | abs(w-w_ref)/v0 | us/case (slowest case) | fixed us/run | switches |",
-             "|---|---|---|---|---|---|"]
+             __doc__.split("\n\n", 2)[2].replace("\n", " "), "", *header("abs(w-w_ref)/v0")]
     with Experiment(ARM_FMU, fmi_type="CoSimulation") as ex:
         for eps in epsilons:
             refs = [reference(theta1, v0, eps, delta) for theta1, v0, delta in CASES]
-            lines.append(row(ex, eps, 1e-6, "default", refs))
+            lines.append(arm_row(ex, eps, 1e-6, "default", refs))
             if eps / 100 < 1e-6:
-                lines.append(row(ex, eps, eps / 100, "harness", refs))
+                lines.append(arm_row(ex, eps, eps / 100, "harness", refs))
     return lines + ["", WHERE_THE_TIME_GOES]
 
 
