@@ -8,7 +8,16 @@
  * the intervals the model's physics bounds (model_flight_sample_step), and the first root of
  * the first interval where one changes sign located on the closed form by erk_locate_root.
  * Contact phases stay with the pair, and what it hands over with CVODE. */
-#include "explicit_rk.h"
+#include "closed_flight.h"
+
+ErkResult erk_or_flight_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
+{
+#ifdef MODEL_CLOSED_FLIGHT
+    ModelFlight flight;
+    if (model_flight_begin(m, *t, e->y, &flight)) return erk_flight_advance(e, m, &flight, t, t_end, steps_left);
+#endif
+    return erk_advance(e, m, t, t_end, steps_left);
+}
 
 #ifdef MODEL_CLOSED_FLIGHT
 

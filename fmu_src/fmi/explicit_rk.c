@@ -246,10 +246,6 @@ static ErkResult hand_over(Erk *e, Model *m, const char *why)
 
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
-#ifdef MODEL_CLOSED_FLIGHT
-    ModelFlight flight;
-    if (model_flight_begin(m, *t, e->y, &flight)) return erk_flight_advance(e, m, &flight, t, t_end, steps_left);
-#endif
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
         if (!rhs(e, m, *t, e->y, e->f)) return hand_over(e, m, "a right-hand side is not finite");

@@ -57,10 +57,4 @@ bool erk_any_crossed(const double lo[], const double hi[]);
 void erk_locate_root(const Model *m, double t, double h, const double z_lo[], const double z_hi[],
                      ErkStateAt path_at, const void *path, double *t_root, double x[MODEL_NX]);
 
-#ifdef MODEL_CLOSED_FLIGHT
-/* erk_advance over a flight in closed form (closed_flight.c): the same stops, events and
- * budget, the state exact. */
-ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, double t_end, long *steps_left);
-#endif
-
 #endif

@@ -24,6 +24,7 @@
 
 #ifdef HAVE_CVODE
 #include "cosim.h"
+#include "closed_flight.h"
 #include "explicit_rk.h"
 
 typedef struct {
@@ -128,7 +129,7 @@ static CoSimResult advance(Instance *in, double t_end, long *steps_left, char *e
 {
     Integrator *s = in->solver;
     if (!in->solver_implicit) {
-        switch (erk_advance(&s->erk, &in->model, &in->time, t_end, steps_left)) {
+        switch (erk_or_flight_advance(&s->erk, &in->model, &in->time, t_end, steps_left)) {
         case ERK_REACHED: return COSIM_REACHED;
         case ERK_EVENT: return COSIM_EVENT;
         case ERK_BUDGET: return COSIM_BUDGET;
