@@ -206,8 +206,10 @@ double rod_flight_sample_step(const RodFlight *f, double t)
     const double phi = fabs(f->x0[ROD_PHI] + f->angular * (t - f->t0)), ang = fabs(f->angular);
     /* phi s + ang s^2/2 = TURN, solved without cancellation */
     const double by_turn = 2 * TURN_PER_SAMPLE / (phi + sqrt(phi * phi + 2 * ang * TURN_PER_SAMPLE));
-    /* the end's acceleration is at most the centre's plus l (phi^2 + ang): K s^2/2 = l DROP */
-    const double K = hypot(f->ax, f->ay) + f->length * (phi * phi + ang);
+    /* the end's acceleration is at most the centre's plus l (phi^2 + ang): K s^2/2 = l DROP
+     * (|ax| + |ay| bounds the centre's without hypot, whose glibc 2.35 symbol no FMU may need:
+     * docs/platforms.md) */
+    const double K = fabs(f->ax) + fabs(f->ay) + f->length * (phi * phi + ang);
     const double by_drop = K > 0 ? sqrt(2 * DROP_PER_SAMPLE * f->length / K) : INFINITY;
     return fmin(by_turn, by_drop);
 }
