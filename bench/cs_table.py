@@ -63,7 +63,8 @@ WHERE_THE_TIME_GOES = (
     "last quiet run of this table had main's at 20-29 us, so about 13-20 us here). A sustained contact (CVODE "
     "after the hand-over), interleaved the same way through fmpy: the rod put down at rest at theta = 1, eps = "
     "1e-6, one step of 0.01 (it sticks and tips over), 0.49 -> 0.38 ms; sliding at v = 1, theta = 0.3, "
-    "mu = 0.3, eps = 1e-4 for 0.2, 0.32 -> 0.25 ms: no slower (the cheaper right-hand side).")
+    "mu = 0.3, eps = 1e-4 for 0.2, 0.32 -> 0.25 ms: no slower (the cheaper right-hand side)."
+    " Side by side with the build before the flight on a quiet machine (bench/cs_compare.py, two runs on 2026-11-26 at load 0.8-1.0), this build takes 0.63-0.67 and 0.65-0.73 of its time per case at every eps; the same runs had the old build at 40-55 and 57-81 us, where the last session's quiet table had it at 20-29 us: the VM's speed drifts 2-3x between hours, so only side-by-side ratios compare, and scaled to that table this build takes 13-20 us per case (five times the single-purpose code's 3.9-6.4 us is 20-32 us).")
 
 
 def cs_markdown(results):
