@@ -21,7 +21,6 @@ ErkResult erk_or_flight_advance(Erk *e, Model *m, double *t, double t_end, long 
 
 #ifdef MODEL_CLOSED_FLIGHT
 
-#include <math.h>
 #include <string.h>
 
 /* One sampling interval (t, t + h] of the flight as an ErkStateAt. */
@@ -40,20 +39,6 @@ static void flight_path_at(const void *path, double th, double x[MODEL_NX])
     else model_flight_at(p->flight, p->t + th * p->h, x);
 }
 
-static bool all_finite(const double x[MODEL_NX])
-{
-    for (int i = 0; i < MODEL_NX; ++i)
-        if (!isfinite(x[i])) return false;
-    return true;
-}
-
-static ErkResult hand_over(Erk *e, Model *m, const char *why)
-{
-    e->why = why;
-    model_set_states(m, e->y);
-    return ERK_HAND_OVER;
-}
-
 /* From e->y and e->z (the state and indicators at *t); each sample spends one of *steps_left. */
 ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, double t_end, long *steps_left)
 {
@@ -69,9 +54,9 @@ ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, 
         const double dt = model_flight_sample_step(f, *t);
         const double t1 = dt < t_end - *t ? *t + dt : t_end;
         /* a sample the time cannot resolve (a spin too fast for it) or a state not finite: CVODE decides */
-        if (!(t1 > *t)) return hand_over(e, m, "the flight's sampling fell below the time's resolution");
+        if (!(t1 > *t)) return erk_hand_over(e, m, "the flight's sampling fell below the time's resolution");
         model_flight_at(f, t1, x);
-        if (!all_finite(x)) return hand_over(e, m, "a value is not finite");
+        if (!erk_all_finite(x, MODEL_NX)) return erk_hand_over(e, m, "a value is not finite");
         model_indicators_at(m, t1, x, z);
         if (erk_any_crossed(e->z, z)) {
             const FlightPath path = { f, *t, t1 - *t, x, &e->flight_samples };

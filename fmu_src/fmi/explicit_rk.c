@@ -59,7 +59,7 @@ void erk_start(Erk *e, const Model *m, double t, double rtol)
     e->why = "";
 }
 
-static bool all_finite(const double *v, int n)
+bool erk_all_finite(const double *v, int n)
 {
     for (int i = 0; i < n; ++i)
         if (!isfinite(v[i])) return false;
@@ -70,7 +70,7 @@ static bool rhs(Erk *e, const Model *m, double t, const double x[NX], double dx[
 {
     ++e->rhs;
     model_derivatives_at(m, t, x, dx);
-    return all_finite(dx, NX);
+    return erk_all_finite(dx, NX);
 }
 
 /* The weighted RMS norm of v, weights atol + rtol max(|y0|, |y1|) (CVODE's, with the larger end). */
@@ -125,7 +125,7 @@ static double try_step(Erk *e, const Model *m, double t, double h, Trial *s)
     if (!rhs(e, m, t + h, s->y6, k[5])) return INFINITY;
     for (int i = 0; i < NX; ++i)
         s->y1[i] = e->y[i] + h * (B1 * k[0][i] + B3 * k[2][i] + B4 * k[3][i] + B5 * k[4][i] + B6 * k[5][i]);
-    if (!rhs(e, m, t + h, s->y1, k[6]) || !all_finite(s->y1, NX)) return INFINITY;
+    if (!rhs(e, m, t + h, s->y1, k[6]) || !erk_all_finite(s->y1, NX)) return INFINITY;
     for (int i = 0; i < NX; ++i)
         err[i] = h * (E1 * k[0][i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] + E7 * k[6][i]);
     return norm(e, err, e->y, s->y1);
@@ -237,7 +237,7 @@ static void locate_root(Erk *e, const Model *m, const Trial *s, double t, double
     erk_locate_root(m, t, h, e->z, z1, dense_path_at, &p, t_root, x);
 }
 
-static ErkResult hand_over(Erk *e, Model *m, const char *why)
+ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
 {
     e->why = why;
     model_set_states(m, e->y);
@@ -248,9 +248,9 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
 {
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
-        if (!rhs(e, m, *t, e->y, e->f)) return hand_over(e, m, "a right-hand side is not finite");
+        if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
         e->h = first_step(e, m, *t, t_end - *t);
-        if (!(e->h > 0)) return hand_over(e, m, "a right-hand side is not finite");
+        if (!(e->h > 0)) return erk_hand_over(e, m, "a right-hand side is not finite");
     }
     bool rejected = false;
     Trial s;
@@ -261,13 +261,13 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
         }
         /* a step the time cannot resolve: the implicit solver decides (and says) what follows */
         if (!(e->h > 16 * DBL_EPSILON * fmax(fabs(*t), fabs(t_end))))
-            return hand_over(e, m, "the step fell below the time's resolution");
+            return erk_hand_over(e, m, "the step fell below the time's resolution");
         const bool last = e->h >= t_end - *t;
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;
         const double err = try_step(e, m, *t, h, &s);
-        if (!isfinite(err)) return hand_over(e, m, "a value is not finite");
+        if (!isfinite(err)) return erk_hand_over(e, m, "a value is not finite");
         const double factor = fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * pow(fmax(err, 1e-10), -0.2)));
         if (err > 1) {
             e->h = h * factor;
@@ -292,7 +292,7 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
         memcpy(e->y, s.y1, sizeof e->y);
         memcpy(e->f, s.k[6], sizeof e->f);
         memcpy(e->z, z1, sizeof e->z);
-        if (e->stiff_steps >= STIFF_STEPS_TO_HAND_OVER) return hand_over(e, m, "a sustained stiff phase");
+        if (e->stiff_steps >= STIFF_STEPS_TO_HAND_OVER) return erk_hand_over(e, m, "a sustained stiff phase");
     }
     model_set_states(m, e->y);
     return ERK_REACHED;

@@ -42,6 +42,12 @@ void erk_start(Erk *e, const Model *m, double t, double rtol);
  * the model's state and *t following. */
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left);
 
+/* True if the n values are all finite (a right-hand side, a state). */
+bool erk_all_finite(const double *v, int n);
+
+/* ERK_HAND_OVER from the state e->y (the last one reached), `why` kept for the event log. */
+ErkResult erk_hand_over(Erk *e, Model *m, const char *why);
+
 /* A path through one interval (t, t + h]: the state at th in [0, 1], exactly the interval's
  * end at th = 1 (a step's dense output, a closed-form flight). */
 typedef void (*ErkStateAt)(const void *path, double th, double x[MODEL_NX]);

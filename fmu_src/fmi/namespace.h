@@ -142,6 +142,8 @@
 #define erk_advance NAMESPACED(erk_advance)
 #define erk_any_crossed NAMESPACED(erk_any_crossed)
 #define erk_flight_advance NAMESPACED(erk_flight_advance)
+#define erk_hand_over NAMESPACED(erk_hand_over)
+#define erk_all_finite NAMESPACED(erk_all_finite)
 #define erk_or_flight_advance NAMESPACED(erk_or_flight_advance)
 #define erk_locate_root NAMESPACED(erk_locate_root)
 #define erk_start NAMESPACED(erk_start)
