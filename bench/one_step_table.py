@@ -3,6 +3,8 @@ fmi2Reset to its last read, and a table row from the repeated runs of a toleranc
 import statistics
 import time
 
+from painleve.fmu.cs_calls import initialize
+
 REPEATS = 11
 
 
@@ -18,10 +20,7 @@ def timed_run(ex, values, rtol, stop, read, step=True):
     vr, fmu = ex.vr, ex.instance
     t0 = time.perf_counter()
     fmu.reset()
-    fmu.setupExperiment(tolerance=rtol, startTime=0.0)
-    fmu.setReal([vr[k] for k in values], list(values.values()))
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
+    initialize(fmu, vr, values, rtol)
     if step:
         fmu.doStep(0.0, stop)
     out = read(fmu, vr)

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..experiments.outcome import SimulationError
 from ..theory import general
+from .cs_calls import initialize
 from .experiment import Experiment
 from .me_fast_loop import integrate
 
@@ -79,11 +80,7 @@ class Body:
             raise BodyError(f"{self.name} has no variable {unknown[0]!r}")
 
     def _initialize(self, instance, values, tolerance=None):
-        vr = self.experiment.vr
-        instance.setupExperiment(tolerance=tolerance, startTime=0.0)
-        instance.setReal([vr[k] for k in values], [float(x) for x in values.values()])
-        instance.enterInitializationMode()
-        instance.exitInitializationMode()
+        initialize(instance, self.experiment.vr, {k: float(x) for k, x in values.items()}, tolerance)
 
     def outputs(self, values, names):
         """{name: value} after initialization from the start values `values`."""

@@ -20,6 +20,20 @@ FMI2_WARNING = 1
 FMI2_TRUE = 1
 
 
+def initialize(instance, vr, start_values, relative_tolerance):
+    """fmpy's `instance` set up at t = 0 with the tolerance, `start_values` ({name: value}) set, and
+    initialized (fmi2ExitInitializationMode done)."""
+    instance.setupExperiment(tolerance=relative_tolerance, startTime=0.0)
+    instance.setReal([vr[k] for k in start_values], list(start_values.values()))
+    instance.enterInitializationMode()
+    instance.exitInitializationMode()
+
+
+def contact_and_mode(instance, vr):
+    """(contact, mode) of fmpy's `instance` now."""
+    return bool(instance.getBoolean([vr["contact"]])[0]), int(instance.getInteger([vr["mode"]])[0])
+
+
 class WrapperCalls:
     """The case's FMI calls through fmpy's wrappers of `instance`; `read`: the Real variables read
     after each doStep."""
@@ -33,12 +47,8 @@ class WrapperCalls:
 
     def start(self, start_values, relative_tolerance):
         """Sets up and initializes the instance with `start_values` ({name: value}); (contact, mode) there."""
-        instance, vr = self.instance, self.vr
-        instance.setupExperiment(tolerance=relative_tolerance, startTime=0.0)
-        instance.setReal([vr[k] for k in start_values], list(start_values.values()))
-        instance.enterInitializationMode()
-        instance.exitInitializationMode()
-        return bool(instance.getBoolean([vr["contact"]])[0]), int(instance.getInteger([vr["mode"]])[0])
+        initialize(self.instance, self.vr, start_values, relative_tolerance)
+        return contact_and_mode(self.instance, self.vr)
 
     def step(self, t, h):
         """fmi2DoStep(t, h); the values of `read` after it, as a list."""

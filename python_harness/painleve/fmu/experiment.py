@@ -40,7 +40,7 @@ from ..experiments.case import Case, horizon
 from ..experiments import interrupt
 from ..experiments.outcome import SimulationError, outcome_of_trajectory
 from . import fmi3_adapter
-from .cs_calls import DirectCalls, WrapperCalls
+from .cs_calls import DirectCalls, WrapperCalls, contact_and_mode, initialize
 from .cs_fast_loop import READ, run_co_simulation
 from .me_fast_loop import run_model_exchange
 
@@ -181,19 +181,14 @@ class Experiment:
 
     def start(self, case, relative_tolerance):
         """The instance set up with the case's start values and initialized (fmi2ExitInitializationMode done)."""
-        start = case.start_values()
-        self.instance.setupExperiment(tolerance=relative_tolerance, startTime=0.0)
-        self.instance.setReal([self.vr[k] for k in start], list(start.values()))
-        self.instance.enterInitializationMode()
-        self.instance.exitInitializationMode()
+        initialize(self.instance, self.vr, case.start_values(), relative_tolerance)
 
     def read(self, names):
         """{name: value} of Real variables of the instance."""
         return dict(zip(names, self.instance.getReal([self.vr[k] for k in names])))
 
     def contact_and_mode(self):
-        return (bool(self.instance.getBoolean([self.vr["contact"]])[0]),
-                int(self.instance.getInteger([self.vr["mode"]])[0]))
+        return contact_and_mode(self.instance, self.vr)
 
     def settings(self, case, prediction=None):
         """fmpy's solver settings for one case: relative_tolerance (or Euler's step_size),
