@@ -8,7 +8,10 @@
  *   stick    s = 0: the exact Filippov field, F_T = (a + G_TN F_N)/G_TT holds v' = 0
  * Event indicators (slot: meaning per mode):
  *   0  y                       contact surface
- *   1  h                       F_N = 0 while in contact, F_N > 0 ahead in flight
+ *   1  max(h, eps h')  (contact) F_N = 0 where the free motion leaves it too (h' of F_N = 0)
+ *      min(-y/eps, h)  (flight)  both conditions of contact hold: h alone would also
+ *                                cross 0 above the floor (y = -eps delta w > 0), where
+ *                                nothing switches
  *   2  v            (slipping) reversal or stick
  *      a + q_+ F_N  (sticking) forward fold of Lemma lemma:nonStick, < 0 inside
  *   3  a + q_- F_N  (sticking) backward fold, > 0 inside
@@ -83,6 +86,14 @@ double contact_time_scale(const Contact *c, const double x[])
     const double P = fmax(fmax(fabs(k.p_plus), fabs(k.p_minus)), fabs(k.S_w));
     const double rate = P * fabs(h.h_w) + sqrt(P * fabs(h.h_yh));
     return rate > 0 ? c->law.epsilon / rate : INFINITY;   /* nothing responds (or a NaN state) */
+}
+
+bool contact_fast_growth(const Contact *c, ContactMode m, const double x[])
+{
+    if (!m.contact || m.slip == 0) return false;
+    const BodyState s = contact_body(c, x);
+    const ContactCoeffs k = contact_coeffs(&c->law, &s);
+    return (m.slip > 0 ? k.p_plus : k.p_minus) < 0;
 }
 
 static double normal_force(const Contact *c, ContactMode m, const BodyState *s)
@@ -163,11 +174,26 @@ void contact_jacobian_differences(const Contact *c, ContactMode m, const double 
     }
 }
 
+/* h' of the free motion (F_N = 0), the same from either side of F_N = 0. */
+static double free_h_rate(const Compliance *h, const BodyState *s, double eps)
+{
+    return h->h_yh * (s->w / eps) + h->h_w * s->b;
+}
+
+/* The contact's F_N = 0 indicator: contact goes on while h > 0, or while the free motion
+ * would at once re-enter it (h' > 0, in_contact's rule), so it ends where both fail;
+ * eps h' has h's units (eps is the contact's time scale). */
+static double contact_goes_on(const Compliance *h, const BodyState *s, double eps)
+{
+    return fmax(h->h, eps * free_h_rate(h, s, eps));
+}
+
 void contact_event_indicators(const Contact *c, ContactMode m, const double x[], double z[CONTACT_NZ])
 {
     const BodyState s = contact_body(c, x);
+    const Compliance h = contact_compliance(&c->law, s.y, s.w);
     z[CONTACT_Z_Y] = s.y;
-    z[CONTACT_Z_FORCE] = contact_compliance(&c->law, s.y, s.w).h;
+    z[CONTACT_Z_FORCE] = m.contact ? contact_goes_on(&h, &s, c->law.epsilon) : fmin(-s.y / c->law.epsilon, h.h);
     if (sticking(m)) {
         const ContactCoeffs k = contact_coeffs(&c->law, &s);
         const double F = normal_force(c, m, &s);
@@ -197,7 +223,14 @@ void contact_indicator_noise(const Contact *c, ContactMode m, const double x[], 
 {
     const BodyState s = contact_body(c, x);
     noise[CONTACT_Z_Y] = s.y_noise;
+    const double eps = c->law.epsilon;
+    const Compliance h = contact_compliance(&c->law, s.y, s.w);
     noise[CONTACT_Z_FORCE] = force_noise(&c->law, &s);
+    if (!m.contact && -s.y / eps <= h.h)
+        noise[CONTACT_Z_FORCE] = s.y_noise / eps;   /* flight's min(-y/eps, h) is -y/eps */
+    if (m.contact && eps * free_h_rate(&h, &s, eps) > h.h)   /* contact's max(h, eps h') is eps h' */
+        noise[CONTACT_Z_FORCE] = NOISE_ULPS * (fabs(h.h_yh * s.w) + eps * fabs(h.h_w * s.b)) +
+                                 fabs(h.h_yh) * s.w_noise;
     noise[CONTACT_Z_SLIP] = s.v_noise;
     noise[CONTACT_Z_AUX] = m.contact ? 0 : s.w_noise;
     if (sticking(m)) {
@@ -213,7 +246,7 @@ const char *contact_indicator_name(ContactMode m, int i)
     const bool stick = sticking(m);
     switch (i) {
     case CONTACT_Z_Y: return "y";
-    case CONTACT_Z_FORCE: return "h(y/eps, w) (F_N = 0)";
+    case CONTACT_Z_FORCE: return m.contact ? "h(y/eps, w) (F_N = 0)" : "min(-y/eps, h) (contact ahead)";
     case CONTACT_Z_SLIP: return stick ? "a + q_+ F_N (forward fold)" : "v";
     case CONTACT_Z_AUX: return stick ? "a + q_- F_N (backward fold)" : m.contact ? "none" : "w (dip bottom)";
     default: return "?";
@@ -222,14 +255,16 @@ const char *contact_indicator_name(ContactMode m, int i)
 
 /* Contact iff y <= 0 and h > 0 (eq FN), ties broken by the free motion
  * y'' = b, so a body at rest on y = 0 and pushed down by b < 0 is in contact:
- * h' = h_yh w/eps + h_w b, h'' = h_yh b/eps to leading order. */
-static bool in_contact(const ContactLaw *law, const BodyState *s)
+ * h' = h_yh w/eps + h_w b, h'' = h_yh b/eps to leading order. On F_N = 0 this keeps a
+ * contact whose free motion would at once re-enter it (h' > 0): the motion goes on along
+ * the surface in contact instead of chattering across it. */
+static bool in_contact(const ContactLaw *law, const BodyState *s, ContactSurfaces on)
 {
     const double eps = law->epsilon, w = s->w, b = s->b;
     const Compliance h = contact_compliance(law, s->y, w);
-    const double h0 = fabs(h.h) > force_noise(law, s) ? h.h : 0.0;   /* on F_N = 0: decided by h' */
-    const double y = fabs(s->y) > s->y_noise ? s->y : 0.0;
-    return lex_sign(y, w, b) < 0 && lex_sign(h0, h.h_yh * (w / eps) + h.h_w * b, h.h_yh * (b / eps)) > 0;
+    const double h0 = on.force || fabs(h.h) <= force_noise(law, s) ? 0.0 : h.h;   /* on F_N = 0: decided by h' */
+    const double y = on.gap || fabs(s->y) <= s->y_noise ? 0.0 : s->y;
+    return lex_sign(y, w, b) < 0 && lex_sign(h0, free_h_rate(&h, s, eps), h.h_yh * (b / eps)) > 0;
 }
 
 /* Slip direction at v = 0 in contact: stick inside the Filippov cone
@@ -260,11 +295,22 @@ static void stop_slip(const Contact *c, const BodyState *s, double x[])
     for (int i = 0; i < b->dof; ++i) x[b->velocity[i]] -= s->friction[i] * impulse;
 }
 
-ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], bool *x_changed)
+ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed)
+{
+    ContactSurfaces on = { .gap = crossed & 1u << CONTACT_Z_Y };
+    if (!(crossed & 1u << CONTACT_Z_FORCE)) return on;
+    const BodyState s = contact_body(c, x);
+    /* in flight the indicator is min(-y/eps, h): the smaller one crossed */
+    if (m.contact || contact_compliance(&c->law, s.y, s.w).h < -s.y / c->law.epsilon) on.force = true;
+    else on.gap = true;
+    return on;
+}
+
+ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], ContactSurfaces on, bool *x_changed)
 {
     BodyState s = contact_body(c, x);
     const double v = slip_speed(&s);
-    ContactMode n = { in_contact(&c->law, &s), m.slip };
+    ContactMode n = { in_contact(&c->law, &s, on), m.slip };
     *x_changed = false;
     if (!n.contact) {                /* no friction in flight: s follows v */
         n.slip = v != 0 ? sign_of(v) : (s.a >= 0 ? +1 : -1);

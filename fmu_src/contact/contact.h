@@ -110,6 +110,10 @@ ContactCoeffs contact_coeffs(const ContactLaw *law, const BodyState *s);
 
 BodyState contact_body(const Contact *c, const double x[]);
 
+/* Whether mode m's fast normal motion at x grows: a slip in contact with p_s < 0 (the paradox),
+ * where F_N grows from any start and the body either sticks or lifts off (Theorem 1). */
+bool contact_fast_growth(const Contact *c, ContactMode m, const double x[]);
+
 /* F_N of the current mode: h/eps while in contact, 0 otherwise. */
 double contact_normal_force(const Contact *c, ContactMode m, const double x[]);
 
@@ -130,19 +134,32 @@ void contact_event_indicators(const Contact *c, ContactMode m, const double x[],
 /* The rounding error of each indicator as computed at x (contact.c). */
 void contact_indicator_noise(const Contact *c, ContactMode m, const double x[], double noise[CONTACT_NZ]);
 
-/* The mode the rules of docs/model.md §2 give at state x, coming from mode m.
- * May stop the slip (v = 0, entering or re-deciding stick); says so in *x_changed. */
-ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], bool *x_changed);
+/* The contact's surfaces that a state sits on because an integrator located an event there:
+ * the indicator's sign at such a state is the root finder's overshoot, not the physics', so the
+ * rules decide by the derivatives, as for a state exactly on the surface. */
+typedef struct {
+    bool gap;   /* y = 0 */
+    bool force; /* h = 0 (F_N = 0) */
+} ContactSurfaces;
+
+/* The mode the rules of docs/model.md §2 give at state x, coming from mode m, with x on the
+ * surfaces `on`. May stop the slip (v = 0, entering or re-deciding stick); says so in *x_changed. */
+ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], ContactSurfaces on, bool *x_changed);
+
+/* The surfaces on which indicators of mode m that changed sign (bit i: indicator i) put x. */
+ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed);
 
 /* Moves x off every switching surface on which an indicator of mode m is 0 to within
- * `margin` times its rounding error, towards the side mode m lives on (contact_events.c). */
-bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], double margin, bool *moved);
+ * `margin` times its rounding error, or (the surfaces `on`) is on the wrong side, towards the
+ * side mode m lives on (contact_events.c). */
+bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], ContactSurfaces on, double margin,
+                               bool *moved);
 
 typedef enum { CONTACT_SETTLED, CONTACT_PING_PONG, CONTACT_STUCK_ON_SURFACE } ContactEventResult;
 
 /* Mode decision iterated to a fixpoint, then contact_move_off_surfaces with `margin`. */
-ContactEventResult contact_event_update(const Contact *c, ContactMode *m, double x[], double margin,
-                                        bool *x_changed);
+ContactEventResult contact_event_update(const Contact *c, ContactMode *m, double x[], ContactSurfaces on,
+                                        double margin, bool *x_changed);
 
 const char *contact_indicator_name(ContactMode m, int i);
 

@@ -15,7 +15,7 @@ static int wanted_side(const Contact *c, ContactMode m, int i, const double x[])
 {
     switch (i) {
     case CONTACT_Z_Y: return m.contact ? -1 : +1;
-    case CONTACT_Z_FORCE: return m.contact ? +1 : contact_body(c, x).y > 0 ? 0 : -1;   /* above the floor h does not decide */
+    case CONTACT_Z_FORCE: return m.contact ? +1 : -1;
     case CONTACT_Z_SLIP: return sticking(m) ? -1 : m.slip;
     case CONTACT_Z_AUX:
         if (m.contact) return m.slip == 0 ? +1 : 0;
@@ -88,7 +88,8 @@ static bool leave_surface(const Contact *c, ContactMode m, double x[], int i, in
     return false;
 }
 
-bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], double margin, bool *moved)
+bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], ContactSurfaces on, double margin,
+                               bool *moved)
 {
     double z[CONTACT_NZ], nominal[CONTACT_MAX_NX], noise[CONTACT_NZ];
     *moved = false;
@@ -97,7 +98,10 @@ bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], doub
         contact_event_indicators(c, m, x, z);
         surface_noise(c, m, x, margin, noise);
         const int side = wanted_side(c, m, i, x);
-        if (side == 0 || fabs(z[i]) > margin * noise[i]) continue;
+        /* a located surface is left on the mode's side, however far the root finder overshot it */
+        const bool located = (i == CONTACT_Z_Y && on.gap) || (i == CONTACT_Z_FORCE && on.force);
+        if (side == 0 || (located ? clear_of(z[i], margin * noise[i], side) : fabs(z[i]) > margin * noise[i]))
+            continue;
         int direction = 0;
         const int state = steepest_state(c, m, i, x, nominal, &direction);
         if (state < 0) return false;
@@ -110,20 +114,20 @@ bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], doub
     return true;
 }
 
-ContactEventResult contact_event_update(const Contact *c, ContactMode *m, double x[], double margin,
-                                        bool *x_changed)
+ContactEventResult contact_event_update(const Contact *c, ContactMode *m, double x[], ContactSurfaces on,
+                                        double margin, bool *x_changed)
 {
     *x_changed = false;
     /* decide and move-off must reach a fixpoint; a few rounds always do
      * unless the rules ping-pong, which is reported, never looped on. */
     for (int round = 0; round < 8; ++round) {
         bool changed, moved;
-        const ContactMode n = contact_decide_mode(c, *m, x, &changed);
+        const ContactMode n = contact_decide_mode(c, *m, x, on, &changed);
         *x_changed |= changed;
         const bool same = n.contact == m->contact && n.slip == m->slip;
         *m = n;
         if (!same || changed) continue;
-        const bool off = contact_move_off_surfaces(c, *m, x, margin, &moved);
+        const bool off = contact_move_off_surfaces(c, *m, x, on, margin, &moved);
         margin = 1;   /* a later round moves only what the decision moved back onto a surface */
         *x_changed |= moved;
         if (!off) return CONTACT_STUCK_ON_SURFACE;

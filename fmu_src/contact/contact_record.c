@@ -15,7 +15,7 @@ ContactMode contact_initial_mode(const Contact *c, double x[])
     /* Slip follows the sign of v until the rules decide. */
     const double v = contact_body(c, x).v;
     bool changed;
-    return contact_decide_mode(c, (ContactMode){ false, (v > 0) - (v < 0) }, x, &changed);
+    return contact_decide_mode(c, (ContactMode){ false, (v > 0) - (v < 0) }, x, (ContactSurfaces){ 0 }, &changed);
 }
 
 void contact_record_start(ContactRecord *r, const Contact *c, double x[], double time)
@@ -34,6 +34,15 @@ void contact_record_describe_start(const ContactRecord *r, char *text, size_t si
     snprintf(text, size, "initial mode contact = %d, mode = %+d", r->mode.contact, r->mode.slip);
 }
 
+/* The indicators that changed sign since integration last restarted (bit i: indicator i), or are 0. */
+static unsigned crossed_since_restart(const ContactRecord *r, const double z[CONTACT_NZ])
+{
+    unsigned crossed = 0;
+    for (int i = 0; i < CONTACT_NZ; ++i)
+        if ((z[i] > 0) != (r->z_at_restart[i] > 0) || z[i] == 0) crossed |= 1u << i;
+    return crossed;
+}
+
 /* Which indicators of `mode` changed sign since integration last restarted (none at the initial
  * event iteration). */
 static void describe_fired(const ContactRecord *r, ContactMode mode, bool initial, const double z[CONTACT_NZ],
@@ -44,8 +53,9 @@ static void describe_fired(const ContactRecord *r, ContactMode mode, bool initia
         snprintf(text, size, "none (initial event iteration)");
         return;
     }
+    const unsigned crossed = crossed_since_restart(r, z);
     for (int i = 0; i < CONTACT_NZ && n < size; ++i)
-        if ((z[i] > 0) != (r->z_at_restart[i] > 0) || z[i] == 0)
+        if (crossed & 1u << i)
             n += (size_t)snprintf(text + n, size - n, "%s'%s' = %.3g", n ? ", " : "",
                                   contact_indicator_name(mode, i), z[i]);
     if (n == 0) snprintf(text, size, "none (time or step event)");
@@ -133,9 +143,13 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
     const int again = r->returns + (same_instant(r, &instant, time) ? r->events_at_instant : 0);
+    /* the surfaces an integrator located (none at the initial event iteration, nor for an input) */
+    const ContactSurfaces on = e->located && !initial && !floor_jumped
+                                   ? contact_surfaces_of(c, before, x, crossed_since_restart(r, z))
+                                   : (ContactSurfaces){ 0 };
     bool moved;
     const ContactEventResult result = contact_event_update(
-        c, &r->mode, x, ldexp(1.0, again < CONTACT_MAX_RETURNS ? again : CONTACT_MAX_RETURNS), &moved);
+        c, &r->mode, x, on, ldexp(1.0, again < CONTACT_MAX_RETURNS ? again : CONTACT_MAX_RETURNS), &moved);
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
     if (e->describe || result != CONTACT_SETTLED) describe_fired(r, before, initial, z, fired, sizeof fired);
@@ -147,6 +161,7 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
         return false;
     }
     if (e->switched) record_switch(r, before, time);
+    e->fast_growth = contact_fast_growth(c, r->mode, x);
     /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
     r->returns = e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
     if (e->describe)

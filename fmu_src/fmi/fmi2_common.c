@@ -113,7 +113,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     if (in->interface == MODEL_EXCHANGE) return fmi2OK;
     /* Co-Simulation does its own initial event iteration. */
     bool changed;
-    if (instance_event_update(in, "fmi2ExitInitializationMode", &changed) != STATUS_OK) return fmi2Error;
+    if (instance_event_update(in, "fmi2ExitInitializationMode", false, &changed) != STATUS_OK) return fmi2Error;
     in->last_successful_time = in->time;
     in->state = StepMode;
     return fmi2OK;

@@ -19,7 +19,7 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
     INTERFACE("fmi2NewDiscreteStates", MODEL_EXCHANGE, "Model Exchange");
     REQUIRE("fmi2NewDiscreteStates", info, "fmi2EventInfo is NULL");
     bool changed;
-    if (instance_event_update(in, "fmi2NewDiscreteStates", &changed) != STATUS_OK) return fmi2Error;
+    if (instance_event_update(in, "fmi2NewDiscreteStates", true, &changed) != STATUS_OK) return fmi2Error;
     /* The model iterates its decisions to a fixpoint: one call settles them. */
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;

@@ -159,7 +159,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
     if (in->interface == MODEL_EXCHANGE || FMI3(in)->event_mode_used) return fmi3OK;
     /* Co-Simulation without Event Mode does its own initial event update. */
     bool changed;
-    if (instance_event_update(in, call, &changed) != STATUS_OK) return fmi3Error;
+    if (instance_event_update(in, call, false, &changed) != STATUS_OK) return fmi3Error;
     in->last_successful_time = in->time;
     in->state = StepMode;
     return fmi3OK;
@@ -204,7 +204,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
     REQUIRE(call, discreteStatesNeedUpdate && terminateSimulation && nominalsOfContinuousStatesChanged &&
             valuesOfContinuousStatesChanged && nextEventTimeDefined && nextEventTime, "an output pointer is NULL");
     bool changed;
-    if (instance_event_update(in, call, &changed) != STATUS_OK) return fmi3Error;
+    if (instance_event_update(in, call, true, &changed) != STATUS_OK) return fmi3Error;
     in->solver_live = false;   /* Co-Simulation restarts CVODE from the updated state */
     FMI3(in)->event_pending = false;
     /* The model iterates its decisions to a fixpoint: one call settles them. */

@@ -145,13 +145,15 @@ void instance_start(Instance *in)
     instance_log_event(in, "t = %.17g: %s", in->time, text);
 }
 
-Status instance_event_update(Instance *in, const char *call, bool *states_changed)
+Status instance_event_update(Instance *in, const char *call, bool located, bool *states_changed)
 {
-    ModelEvent e = { .describe = in->log_on[LOG_EVENTS] || in->log_on[LOG_ALL] };   /* as instance_log_event */
+    ModelEvent e = { .describe = in->log_on[LOG_EVENTS] || in->log_on[LOG_ALL], .located = located };
     model_set_time(&in->model, in->time);
     if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);
     *states_changed = e.switched || e.states_changed;
+    in->event_switched = e.switched;
+    in->fast_growth = e.fast_growth;
     return STATUS_OK;
 }
 
@@ -217,7 +219,10 @@ void instance_set(Instance *in, unsigned int vr, double value)
     const bool input = info && info->kind == KIND_INPUT;
     const bool changed = input && model_stored(&in->model, vr) != value;   /* an input is stored as set */
     model_set(&in->model, vr, value);
-    if (input && (model_input_set(&in->model, vr, in->time) || changed)) in->inputs_jumped = true;
+    if (!(input && (model_input_set(&in->model, vr, in->time) || changed))) return;
+    in->inputs_jumped = true;
+    /* the indicators' reference follows the input: what it moved across a surface, no integrator located */
+    if (in->state == ContinuousTimeMode) model_begin_integration(&in->model);
 }
 
 static Status check_size(Instance *in, const char *call, const void *array, size_t n, size_t expected)

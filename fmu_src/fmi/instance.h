@@ -50,6 +50,8 @@ struct Instance {
     void *solver;                /* Co-Simulation's integrator, made on the first step */
     bool solver_live;            /* the solver holds this trajectory at `time`: a step continues it */
     bool solver_implicit;        /* CVODE, not the explicit pair, integrates (a sustained stiff phase) */
+    bool event_switched;         /* the last event update changed the mode */
+    bool fast_growth;            /* the last event update's mode grows fast (model_event.h) */
     double last_successful_time;
     bool inputs_jumped;          /* an input changed since the last Co-Simulation step */
 };
@@ -102,8 +104,8 @@ Model *instance_model(Instance *in);
 /* Initialization ends: the initial mode and the event record (model_start). */
 void instance_start(Instance *in);
 
-/* The event update at the instance's time, logged. */
-Status instance_event_update(Instance *in, const char *call, bool *states_changed);
+/* The event update at the instance's time, logged; `located`: a state event an integrator located. */
+Status instance_event_update(Instance *in, const char *call, bool located, bool *states_changed);
 
 /* ----------------------------------------------------------- variables */
 

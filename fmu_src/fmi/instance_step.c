@@ -150,7 +150,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
         bool changed;
         in->inputs_jumped = false;
         in->solver_live = false;
-        if (instance_event_update(in, call, &changed) != STATUS_OK) return STATUS_ERROR;
+        if (instance_event_update(in, call, false, &changed) != STATUS_OK) return STATUS_ERROR;
     }
     if (!in->solver_live && restart(in, call) != STATUS_OK) return STATUS_ERROR;
     const double t_start = in->time;
@@ -176,8 +176,18 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
         }
         bool changed;
         ++((Integrator *)in->solver)->events;
-        if (instance_event_update(in, call, &changed) != STATUS_OK || restart(in, call) != STATUS_OK)
-            return STATUS_ERROR;
+        if (instance_event_update(in, call, true, &changed) != STATUS_OK) return STATUS_ERROR;
+        if (in->solver_implicit && in->fast_growth) {   /* CVODE's large steps would damp the growth */
+            instance_log_event(in, "t = %.17g: the contact's fast motion grows: the explicit pair integrates on",
+                               in->time);
+            in->solver_implicit = false;
+        } else if (!in->solver_implicit && !in->event_switched && !in->fast_growth &&
+                   ((Integrator *)in->solver)->erk.stiff_steps > 0) {
+            /* the pair's error, held at its stability bound, crossed a surface the motion does not */
+            instance_log_event(in, "t = %.17g: a stiff phase returned to a surface: CVODE integrates on", in->time);
+            in->solver_implicit = true;
+        }
+        if (restart(in, call) != STATUS_OK) return STATUS_ERROR;
         if (policy == RETURN_AFTER_EVENT) {
             *end = STEP_EVENT;
             return STATUS_OK;

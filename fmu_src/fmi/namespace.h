@@ -28,6 +28,7 @@
 #define contact_energy NAMESPACED(contact_energy)
 #define contact_event_indicators NAMESPACED(contact_event_indicators)
 #define contact_event_update NAMESPACED(contact_event_update)
+#define contact_fast_growth NAMESPACED(contact_fast_growth)
 #define contact_friction_force NAMESPACED(contact_friction_force)
 #define contact_indicator_name NAMESPACED(contact_indicator_name)
 #define contact_indicator_noise NAMESPACED(contact_indicator_noise)
@@ -41,6 +42,7 @@
 #define contact_record_new NAMESPACED(contact_record_new)
 #define contact_record_start NAMESPACED(contact_record_start)
 #define contact_spring_energy NAMESPACED(contact_spring_energy)
+#define contact_surfaces_of NAMESPACED(contact_surfaces_of)
 #define contact_time_scale NAMESPACED(contact_time_scale)
 
 /* rod.c, rod_partials.c: the rod, the core's first body */

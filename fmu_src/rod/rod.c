@@ -160,7 +160,7 @@ void rod_nominals(const RodParams *p, double nominal[ROD_NX])
 bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved)
 {
     const Contact c = rod_contact(p);
-    return contact_move_off_surfaces(&c, m, x, margin, moved);
+    return contact_move_off_surfaces(&c, m, x, (ContactSurfaces){ 0 }, margin, moved);
 }
 
 /* ------------------------------------------- the free flight in closed form */

@@ -92,10 +92,78 @@ static void test_the_contacts_time_scale_is_its_fastest_modes_rate(void)
         }
 }
 
+/* In flight above the floor the contact indicator stays negative however fast the rod falls:
+ * h = -y/eps - delta w alone would cross 0 at y = -eps delta w > 0, where nothing switches. */
+static void test_the_flight_indicator_does_not_cross_above_the_floor(void)
+{
+    const RodParams p = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3 };
+    const RodMode flight = { false, +1 };
+    for (double y = 1e-12; y < 1; y *= 10)
+        for (double w = -1e3; w < 0; w /= 10) {
+            const double x[ROD_NX] = { [ROD_Y] = y, [ROD_W] = w, [ROD_V] = 1, [ROD_THETA] = 1, [ROD_PHI] = 0.5 };
+            double z[ROD_NZ];
+            rod_event_indicators(&p, flight, x, z);
+            CHECK(z[ROD_Z_FORCE] < 0, "y = %g, w = %g: flight's contact indicator %g, wanted < 0", y, w,
+                  z[ROD_Z_FORCE]);
+        }
+}
+
+/* A contact on F_N = 0 where an integrator located it (h a little below 0, as a root finder
+ * overshoots) continues exactly when the free motion would at once re-enter it: the sign of
+ * h' = -w/eps - delta b of the linear law, with b of eq coeffs. */
+static void test_a_located_lift_off_is_decided_by_the_free_motions_h_rate(void)
+{
+    int kept = 0, left = 0;
+    for (double phi = 0; phi < 3; phi += 0.25)
+        for (double w = 1e-4; w < 1; w *= 3) {
+            const RodParams p = { .alpha = 3, .mu = 0.2, .delta = 2, .epsilon = 1e-3 };
+            const double eps = p.epsilon, theta = 1.0;
+            /* in the floor, rising, with h = -y/eps - delta w = -1e-12: just past F_N = 0 */
+            const double y = -eps * (p.delta * w - 1e-12);
+            double x[ROD_NX] = { [ROD_Y] = y, [ROD_W] = w, [ROD_V] = 1, [ROD_THETA] = theta, [ROD_PHI] = phi };
+            const double b = -1 + phi * phi * sin(theta);   /* eq coeffs */
+            const double h_rate = -w / eps - p.delta * b;
+            if (fabs(h_rate) < 1e-6 * (w / eps)) continue;
+            const Contact c = rod_contact(&p);
+            bool changed;
+            const ContactMode m = contact_decide_mode(&c, (ContactMode){ true, +1 }, x,
+                                                      (ContactSurfaces){ .force = true }, &changed);
+            CHECK(m.contact == (h_rate > 0), "phi = %g, w = %g: h' = %g, contact %d", phi, w, h_rate, m.contact);
+            kept += m.contact;
+            left += !m.contact;
+            /* not located, the same state is clearly past the surface: it lifts off */
+            const ContactMode plain = contact_decide_mode(&c, (ContactMode){ true, +1 }, x, (ContactSurfaces){ 0 },
+                                                          &changed);
+            CHECK(!plain.contact, "phi = %g, w = %g: a state past F_N = 0 kept its contact", phi, w);
+        }
+    CHECK(kept >= 5 && left >= 5, "the cases did not cover both outcomes: kept %d, left %d", kept, left);
+}
+
+/* The fast normal motion grows exactly in the slips whose p_s is negative (the paradox). */
+static void test_fast_growth_is_the_slips_with_negative_p(void)
+{
+    const RodParams p = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3 };
+    const Contact c = rod_contact(&p);
+    int grows = 0;
+    for (double theta = 0.05; theta < 3.1; theta += 0.1) {
+        const double x[ROD_NX] = { [ROD_Y] = -1e-6, [ROD_THETA] = theta, [ROD_PHI] = 0.3 };
+        const RodCoeffs k = rod_coeffs(&p, theta, 0.3);
+        CHECK(contact_fast_growth(&c, (ContactMode){ true, +1 }, x) == (k.p_plus < 0), "theta = %g: slip +1", theta);
+        CHECK(contact_fast_growth(&c, (ContactMode){ true, -1 }, x) == (k.p_minus < 0), "theta = %g: slip -1", theta);
+        CHECK(!contact_fast_growth(&c, (ContactMode){ true, 0 }, x) && !contact_fast_growth(&c, (ContactMode){ false, +1 }, x),
+              "theta = %g: stick or flight grows", theta);
+        grows += k.p_plus < 0;
+    }
+    CHECK(grows >= 3, "only %d angles in the Painleve wedge", grows);
+}
+
 int main(void)
 {
     test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_the_fold_depends_on();
     test_the_contacts_time_scale_is_its_fastest_modes_rate();
+    test_the_flight_indicator_does_not_cross_above_the_floor();
+    test_a_located_lift_off_is_decided_by_the_free_motions_h_rate();
+    test_fast_growth_is_the_slips_with_negative_p();
     printf("rod_unit: %s\n", failures ? "FAILED" : "all checks passed");
     return failures != 0;
 }
