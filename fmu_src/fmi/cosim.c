@@ -161,18 +161,20 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *st
         snprintf(err, n, "CVODE is not set up (its last start failed)");
         return COSIM_FAILED;
     }
-    /* CVODE's own time, which a hand-over or a restart may have put on t_end, and a master's
-     * communication point (*t) may have passed by rounding: an end it has reached is reached. */
-    sunrealtype reached = *t;
-    if (CVodeGetCurrentTime(cs->cvode, &reached) != CV_SUCCESS) {
+    /* CVODE's own time is where its start or last advance left it: a hand-over or a restart may
+     * have put it on t_end, and a master's communication point (*t) may lie a few ulps behind it.
+     * CVODE refuses a stop time it has reached; the step has nothing left to integrate. */
+    sunrealtype own = *t;
+    if (CVodeGetCurrentTime(cs->cvode, &own) != CV_SUCCESS) {
         snprintf(err, n, "CVODE could not say its time: CVodeGetCurrentTime failed (%s)", cs->error.text);
         return COSIM_FAILED;
     }
-    if (step_end_reached(fmax(*t, reached), t_end)) {
+    if (step_end_reached(fmax(*t, own), t_end)) {
         *t = t_end;
         return COSIM_REACHED;
     }
     if (*steps_left <= 0) return COSIM_BUDGET;
+    sunrealtype reached = *t;
     if (CVodeSetStopTime(cs->cvode, t_end) != CV_SUCCESS) {
         snprintf(err, n, "CVODE refused the stop time %.17g: %s", t_end, cs->error.text);
         return COSIM_FAILED;

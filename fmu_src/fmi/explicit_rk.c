@@ -265,7 +265,7 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
             model_set_states(m, e->y);
             return ERK_BUDGET;
         }
-        /* the last step: one that reaches the end, or leaves less of it than is anything */
+        /* the last step reaches the end, or leaves of it what counts as reached (step_end.h) */
         const bool last = step_end_reached(*t + e->h, t_end);
         /* a step the time cannot resolve short of the end: the implicit solver decides (and says) what follows */
         if (!last && !(e->h > 16 * DBL_EPSILON * fmax(fabs(*t), fabs(t_end))))
