@@ -7,8 +7,9 @@ phase, the closed-form flight's landing where the pair takes over, and the resta
 Each switch's time is first read from the FMU's event log in one uninterrupted step; the runs that
 put a communication point on it, or a few ulps either side, must return OK at every step and end
 where the uninterrupted run ends, to the tolerance: the solution does not depend on where the
-master samples it. Where the physics fixes the switch's time (a rod dropped flat-out with no spin
-lands after sqrt(2 y0 / g)), the FMU must put it there."""
+master samples it. Where the physics fixes the switch's time (a rod dropped with no spin and no
+vertical velocity lands after sqrt(2 y0 / g)), the FMU must put it there. Last, the recorded runs
+that ended in CVode (-22) replay with OK at every step."""
 import json
 import math
 import pathlib
@@ -284,17 +285,18 @@ def test_a_restart_then_steps_of_a_few_ulps_stay_with_the_pair(unpacked, fmi):
     s.free()
 
 
-# Random legal Co-Simulation runs with irregular communication steps that ended in CVode (-22) at a
-# step's end: the three "solver_error" cases of the project's shared reproduction file
-# (shared/repro/cases.json, issue "Every integrator switch completes"), copied as they were.
 REPLAYS = json.loads((pathlib.Path(__file__).parent / "data" / "switch_cases.json").read_text())["cases"]
 
 
 @pytest.mark.parametrize("fmi", VERSIONS)
 @pytest.mark.parametrize("case", REPLAYS, ids=[f"{c['model']}-fmi{c['fmi_version']}" for c in REPLAYS])
 def test_the_recorded_runs_that_ended_in_cvode_errors_return_ok_at_every_step(unpacked, case, fmi):
-    # Each case in the FMI version it was recorded in and in the other (the integrators are shared):
-    # its start values, tolerance and start time, then its steps as a master adds them up.
+    """Random legal Co-Simulation runs with irregular communication steps that ended in CVode (-22)
+    at a step's end (PainleveRod FMI 2.0, TwoLinkArm FMI 3.0, PainleveRodSI FMI 3.0): the three
+    "solver_error" cases of the project's shared reproduction file, shared/repro/cases.json (issue
+    "Every integrator switch completes"), copied as they were into data/switch_cases.json. Each case
+    runs in the FMI version it was recorded in and in the other (both share the integrators): its
+    start values, tolerance and start time, then its steps as a master adds them up."""
     s = Slave(unpacked, fmu_file(case["model"] + ".fmu", fmi), case["tolerance"], case["start_time"],
               **case["start_values"])
     t = case["start_time"]
