@@ -23,6 +23,8 @@ ErkResult erk_or_flight_advance(Erk *e, Model *m, double *t, double t_end, long 
 
 #include <string.h>
 
+#include "step_end.h"
+
 /* One sampling interval (t, t + h] of the flight as an ErkStateAt. */
 typedef struct {
     const ModelFlight *flight;
@@ -44,7 +46,7 @@ ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, 
 {
     e->h = 0;   /* the pair, when it takes over after the next event, starts afresh there */
     double x[MODEL_NX], z[MODEL_NZ + 1];
-    while (*t < t_end) {
+    while (!step_end_reached(*t, t_end)) {
         if (*steps_left <= 0) {
             model_set_states(m, e->y);
             return ERK_BUDGET;
@@ -52,7 +54,7 @@ ErkResult erk_flight_advance(Erk *e, Model *m, const ModelFlight *f, double *t, 
         --*steps_left;
         ++e->flight_samples;
         const double dt = model_flight_sample_step(f, *t);
-        const double t1 = dt < t_end - *t ? *t + dt : t_end;
+        const double t1 = dt < t_end - *t && !step_end_reached(*t + dt, t_end) ? *t + dt : t_end;
         /* a sample the time cannot resolve (a spin too fast for it) or a state not finite: CVODE decides */
         if (!(t1 > *t)) return erk_hand_over(e, m, "the flight's sampling fell below the time's resolution");
         model_flight_at(f, t1, x);

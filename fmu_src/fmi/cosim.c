@@ -16,6 +16,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "step_end.h"
 #include "sundials_compat.h"
 
 struct CoSim {
@@ -159,6 +160,18 @@ CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *st
     if (!cs->started) {
         snprintf(err, n, "CVODE is not set up (its last start failed)");
         return COSIM_FAILED;
+    }
+    /* CVODE's own time is where its start or last advance left it: a hand-over or a restart may
+     * have put it on t_end, and a master's communication point (*t) may lie a few ulps behind it.
+     * CVODE refuses a stop time it has reached; the step has nothing left to integrate. */
+    sunrealtype own = *t;
+    if (CVodeGetCurrentTime(cs->cvode, &own) != CV_SUCCESS) {
+        snprintf(err, n, "CVODE could not say its time: CVodeGetCurrentTime failed (%s)", cs->error.text);
+        return COSIM_FAILED;
+    }
+    if (step_end_reached(fmax(*t, own), t_end)) {
+        *t = t_end;
+        return COSIM_REACHED;
     }
     if (*steps_left <= 0) return COSIM_BUDGET;
     sunrealtype reached = *t;

@@ -26,7 +26,9 @@ bool cosim_start(CoSim *cs, Model *m, double t, double rtol, char *err, size_t n
 
 /* Integrates from *t towards t_end, stopping exactly there, at the first
  * root of an event indicator, or after *steps_left internal steps; the
- * model's state and *t follow, and *steps_left loses the steps taken. */
+ * model's state and *t follow, and *steps_left loses the steps taken. An end
+ * that *t or CVODE's own time has reached (step_end.h) is reached at once,
+ * CVODE not called. */
 CoSimResult cosim_advance(CoSim *cs, Model *m, double *t, double t_end, long *steps_left, char *err, size_t n);
 
 /* CVODE's steps and right-hand sides since cs was made (diagnostics: restarts reset

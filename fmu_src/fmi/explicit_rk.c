@@ -9,6 +9,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "step_end.h"
+
 enum { NX = MODEL_NX, NZ = MODEL_NZ };
 
 /* The tableau: nodes c, stages a, the fifth-order weights b (the last stage's
@@ -246,6 +248,10 @@ ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
 
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
+    if (step_end_reached(*t, t_end)) {   /* the model's state is the one reached */
+        *t = t_end;
+        return ERK_REACHED;
+    }
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
         if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
@@ -254,15 +260,16 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
     }
     bool rejected = false;
     Trial s;
-    while (*t < t_end) {
+    while (!step_end_reached(*t, t_end)) {
         if (*steps_left <= 0) {
             model_set_states(m, e->y);
             return ERK_BUDGET;
         }
-        /* a step the time cannot resolve: the implicit solver decides (and says) what follows */
-        if (!(e->h > 16 * DBL_EPSILON * fmax(fabs(*t), fabs(t_end))))
+        /* the last step reaches the end, or leaves of it what counts as reached (step_end.h) */
+        const bool last = step_end_reached(*t + e->h, t_end);
+        /* a step the time cannot resolve short of the end: the implicit solver decides (and says) what follows */
+        if (!last && !(e->h > 16 * DBL_EPSILON * fmax(fabs(*t), fabs(t_end))))
             return erk_hand_over(e, m, "the step fell below the time's resolution");
-        const bool last = e->h >= t_end - *t;
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;

@@ -14,13 +14,13 @@
  * lift-offs), where CVODE stays on the slow motion; and a rod on the shaker
  * table, whose inputs restart the integrator at every step, is not tested for
  * stiffness again each time. An IWC never hands over: the explicit pair runs it. */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "instance.h"
 #include "cvode_build.h" /* HAVE_CVODE also where a source FMU carries CVODE */
+#include "step_end.h"
 
 #ifdef HAVE_CVODE
 #include "cosim.h"
@@ -156,8 +156,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
     const double t_start = in->time;
     long steps_left = MAX_SOLVER_STEPS_PER_CALL;
     long events = 0;
-    /* A remainder CVODE cannot resolve (a few ulps after an event) is reached. */
-    while (t_end - in->time > 4 * DBL_EPSILON * fmax(1, fabs(t_end))) {
+    while (!step_end_reached(in->time, t_end)) {
         char err[512];
         const CoSimResult r = advance(in, t_end, &steps_left, err, sizeof err);
         if (r == COSIM_FAILED) {
