@@ -98,16 +98,20 @@ bool contact_move_off_surfaces(const Contact *c, ContactMode m, double x[], Cont
         contact_event_indicators(c, m, x, z);
         surface_noise(c, m, x, margin, noise);
         const int side = wanted_side(c, m, i, x);
-        /* a located surface is left on the mode's side, however far the root finder overshot it */
-        const bool located = (i == CONTACT_Z_Y && on.gap) || (i == CONTACT_Z_FORCE && on.force);
-        if (side == 0 || (located ? clear_of(z[i], margin * noise[i], side) : fabs(z[i]) > margin * noise[i]))
-            continue;
+        /* A located surface is left on the mode's side, as far as the root finder overshot it
+         * within the state's nominal (beyond it, the overshoot stays: the time cannot place the
+         * event finer, and the record's guard judges what follows). */
+        const bool on_surface = fabs(z[i]) <= margin * noise[i];
+        const bool overshot = !on_surface && ((i == CONTACT_Z_Y && on.gap) || (i == CONTACT_Z_FORCE && on.force)) &&
+                              !clear_of(z[i], margin * noise[i], side);
+        if (side == 0 || !(on_surface || overshot)) continue;
         int direction = 0;
         const int state = steepest_state(c, m, i, x, nominal, &direction);
         if (state < 0) return false;
         /* A margin the nominal cannot reach falls back to the plain one (clear of the rounding). */
         const bool left = leave_surface(c, m, x, i, side, state, direction, nominal[state], margin) ||
                           (margin > 1 && leave_surface(c, m, x, i, side, state, direction, nominal[state], 1));
+        if (!left && overshot) continue;   /* leave_surface restored x */
         *moved = true;
         if (!left) return false;
     }
