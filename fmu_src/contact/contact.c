@@ -13,6 +13,7 @@
  *                                cross 0 above the floor (y = -eps delta w > 0), where
  *                                nothing switches
  *   2  v            (slipping) reversal or stick
+ *      +1           (flight)   nothing to watch: the slip label follows v at each event
  *      a + q_+ F_N  (sticking) forward fold of Lemma lemma:nonStick, < 0 inside
  *   3  a + q_- F_N  (sticking) backward fold, > 0 inside
  *      w            (flight)   bottom of a dip: makes a grazing contact that
@@ -200,7 +201,7 @@ void contact_event_indicators(const Contact *c, ContactMode m, const double x[],
         z[CONTACT_Z_SLIP] = k.a + k.q_plus * F;
         z[CONTACT_Z_AUX] = k.a + k.q_minus * F;
     } else {
-        z[CONTACT_Z_SLIP] = s.v;
+        z[CONTACT_Z_SLIP] = m.contact ? s.v : 1.0;   /* in flight v switches nothing: no friction acts */
         z[CONTACT_Z_AUX] = m.contact ? -1.0 : s.w;
     }
 }
@@ -231,7 +232,7 @@ void contact_indicator_noise(const Contact *c, ContactMode m, const double x[], 
     if (m.contact && eps * free_h_rate(&h, &s, eps) > h.h)   /* contact's max(h, eps h') is eps h' */
         noise[CONTACT_Z_FORCE] = NOISE_ULPS * (fabs(h.h_yh * s.w) + eps * fabs(h.h_w * s.b)) +
                                  fabs(h.h_yh) * s.w_noise;
-    noise[CONTACT_Z_SLIP] = s.v_noise;
+    noise[CONTACT_Z_SLIP] = m.contact ? s.v_noise : 0;
     noise[CONTACT_Z_AUX] = m.contact ? 0 : s.w_noise;
     if (sticking(m)) {
         const ContactCoeffs k = contact_coeffs(&c->law, &s);
@@ -247,7 +248,7 @@ const char *contact_indicator_name(ContactMode m, int i)
     switch (i) {
     case CONTACT_Z_Y: return "y";
     case CONTACT_Z_FORCE: return m.contact ? "h(y/eps, w) (F_N = 0)" : "min(-y/eps, h) (contact ahead)";
-    case CONTACT_Z_SLIP: return stick ? "a + q_+ F_N (forward fold)" : "v";
+    case CONTACT_Z_SLIP: return stick ? "a + q_+ F_N (forward fold)" : m.contact ? "v" : "none";
     case CONTACT_Z_AUX: return stick ? "a + q_- F_N (backward fold)" : m.contact ? "none" : "w (dip bottom)";
     default: return "?";
     }
@@ -312,9 +313,10 @@ ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], Con
     const double v = slip_speed(&s);
     ContactMode n = { in_contact(&c->law, &s, on), m.slip };
     *x_changed = false;
-    if (!n.contact) {                /* no friction in flight: s follows v */
+    if (!m.contact || !n.contact) {  /* no friction in flight: s follows v */
         n.slip = v != 0 ? sign_of(v) : (s.a >= 0 ? +1 : -1);
-        return n;
+        m.slip = n.slip;
+        if (!n.contact) return n;
     }
     if (v != 0 && sign_of(v) == m.slip) return n;   /* still slipping */
     if (v != 0) {                    /* v crossed 0 (or drifted in stick) */

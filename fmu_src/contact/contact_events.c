@@ -16,7 +16,7 @@ static int wanted_side(const Contact *c, ContactMode m, int i, const double x[])
     switch (i) {
     case CONTACT_Z_Y: return m.contact ? -1 : +1;
     case CONTACT_Z_FORCE: return m.contact ? +1 : -1;
-    case CONTACT_Z_SLIP: return sticking(m) ? -1 : m.slip;
+    case CONTACT_Z_SLIP: return sticking(m) ? -1 : m.contact ? m.slip : 0;
     case CONTACT_Z_AUX:
         if (m.contact) return m.slip == 0 ? +1 : 0;
         return contact_body(c, x).b >= 0 ? +1 : -1;

@@ -205,7 +205,8 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
             valuesOfContinuousStatesChanged && nextEventTimeDefined && nextEventTime, "an output pointer is NULL");
     bool changed;
     if (instance_event_update(in, call, true, &changed) != STATUS_OK) return fmi3Error;
-    in->solver_live = false;   /* Co-Simulation restarts CVODE from the updated state */
+    if (in->interface == CO_SIMULATION) instance_choose_integrator(in);
+    in->solver_live = false;   /* Co-Simulation restarts its integrator from the updated state */
     FMI3(in)->event_pending = false;
     /* The model iterates its decisions to a fixpoint: one call settles them. */
     *discreteStatesNeedUpdate = fmi3False;

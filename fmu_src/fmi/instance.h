@@ -104,6 +104,11 @@ Model *instance_model(Instance *in);
 /* Initialization ends: the initial mode and the event record (model_start). */
 void instance_start(Instance *in);
 
+/* Co-Simulation after a located event: CVODE hands a mode whose fast motion grows back to the
+ * explicit pair, and the pair hands a stiff phase that returned to a surface (an event that
+ * switched nothing) to CVODE; otherwise the trajectory keeps its integrator. */
+void instance_choose_integrator(Instance *in);
+
 /* The event update at the instance's time, logged; `located`: a state event an integrator located. */
 Status instance_event_update(Instance *in, const char *call, bool located, bool *states_changed);
 

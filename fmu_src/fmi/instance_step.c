@@ -8,7 +8,8 @@
  * have been replaced: initialization, reset, FMU state get and set. So the FMU
  * state is still the model's, and which integrator the trajectory has. A
  * trajectory handed to CVODE stays with it, across events and restarts, until the
- * instance is reset: in a stiff contact the explicit pair's errors, within the
+ * instance is reset or an event turns to a mode whose fast motion grows (the paradox's
+ * contact, whose growth BDF's large steps damp; instance_choose_integrator): in a stiff contact the explicit pair's errors, within the
  * tolerance in the states, reach the contact force times the damping (an SI rod
  * with c = 4.8e9 N s/m: its force indicator chattered through 20,000 spurious
  * lift-offs), where CVODE stays on the slow motion; and a rod on the shaker
@@ -142,6 +143,20 @@ static CoSimResult advance(Instance *in, double t_end, long *steps_left, char *e
     return cosim_advance(s->cvode, &in->model, &in->time, t_end, steps_left, err, n);
 }
 
+void instance_choose_integrator(Instance *in)
+{
+    const Integrator *s = in->solver;
+    if (!s) return;
+    if (in->solver_implicit && in->fast_growth) {   /* CVODE's large steps would damp the growth */
+        instance_log_event(in, "t = %.17g: the contact's fast motion grows: the explicit pair integrates on", in->time);
+        in->solver_implicit = false;
+    } else if (!in->solver_implicit && !in->event_switched && !in->fast_growth && s->erk.stiff_steps > 0) {
+        /* the pair's error, held at its stability bound, crossed a surface the motion does not */
+        instance_log_event(in, "t = %.17g: a stiff phase returned to a surface: CVODE integrates on", in->time);
+        in->solver_implicit = true;
+    }
+}
+
 static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)
 {
     if (!in->solver) in->solver = calloc(1, sizeof(Integrator));
@@ -176,16 +191,7 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
         bool changed;
         ++((Integrator *)in->solver)->events;
         if (instance_event_update(in, call, true, &changed) != STATUS_OK) return STATUS_ERROR;
-        if (in->solver_implicit && in->fast_growth) {   /* CVODE's large steps would damp the growth */
-            instance_log_event(in, "t = %.17g: the contact's fast motion grows: the explicit pair integrates on",
-                               in->time);
-            in->solver_implicit = false;
-        } else if (!in->solver_implicit && !in->event_switched && !in->fast_growth &&
-                   ((Integrator *)in->solver)->erk.stiff_steps > 0) {
-            /* the pair's error, held at its stability bound, crossed a surface the motion does not */
-            instance_log_event(in, "t = %.17g: a stiff phase returned to a surface: CVODE integrates on", in->time);
-            in->solver_implicit = true;
-        }
+        instance_choose_integrator(in);
         if (restart(in, call) != STATUS_OK) return STATUS_ERROR;
         if (policy == RETURN_AFTER_EVENT) {
             *end = STEP_EVENT;
@@ -213,6 +219,11 @@ static void log_statistics(Instance *in, const char *call, double t, const long 
 void instance_free_solver(Instance *in)
 {
     in->solver = NULL;
+}
+
+void instance_choose_integrator(Instance *in)
+{
+    (void)in;
 }
 
 static Status integrate(Instance *in, const char *call, double t_end, StepPolicy policy, StepEnd *end)

@@ -117,6 +117,7 @@
 #define instance_set NAMESPACED(instance_set)
 #define instance_derivatives NAMESPACED(instance_derivatives)
 #define instance_discard NAMESPACED(instance_discard)
+#define instance_choose_integrator NAMESPACED(instance_choose_integrator)
 #define instance_event_update NAMESPACED(instance_event_update)
 #define instance_fail NAMESPACED(instance_fail)
 #define instance_free_solver NAMESPACED(instance_free_solver)

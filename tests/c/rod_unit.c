@@ -157,6 +157,28 @@ static void test_fast_growth_is_the_slips_with_negative_p(void)
     CHECK(grows >= 3, "only %d angles in the Painleve wedge", grows);
 }
 
+/* In flight no friction acts, so v = 0 switches nothing and is no event; a contact entered
+ * from flight slips the way v points, whatever label the flight carried. */
+static void test_a_contact_entered_from_flight_slips_the_way_v_points(void)
+{
+    const RodParams p = { .alpha = 3, .mu = 0.3, .delta = 1, .epsilon = 1e-3 };
+    const Contact c = rod_contact(&p);
+    for (double v = -1; v <= 1; v += 0.5) {
+        if (v == 0) continue;
+        for (int label = -1; label <= 1; label += 2) {
+            double x[ROD_NX] = { [ROD_Y] = -1e-9, [ROD_W] = -0.5, [ROD_V] = v, [ROD_THETA] = 1, [ROD_PHI] = 0.5 };
+            double z[ROD_NZ];
+            rod_event_indicators(&p, (RodMode){ false, label }, x, z);
+            CHECK(z[ROD_Z_SLIP] > 0, "v = %g: flight's slip indicator %g", v, z[ROD_Z_SLIP]);
+            bool changed;
+            const ContactMode m = contact_decide_mode(&c, (ContactMode){ false, label }, x, (ContactSurfaces){ 0 },
+                                                      &changed);
+            CHECK(m.contact && m.slip == (v > 0 ? +1 : -1) && !changed, "v = %g, label %+d: contact %d, slip %+d",
+                  v, label, m.contact, m.slip);
+        }
+    }
+}
+
 int main(void)
 {
     test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_the_fold_depends_on();
@@ -164,6 +186,7 @@ int main(void)
     test_the_flight_indicator_does_not_cross_above_the_floor();
     test_a_located_lift_off_is_decided_by_the_free_motions_h_rate();
     test_fast_growth_is_the_slips_with_negative_p();
+    test_a_contact_entered_from_flight_slips_the_way_v_points();
     printf("rod_unit: %s\n", failures ? "FAILED" : "all checks passed");
     return failures != 0;
 }
