@@ -32,7 +32,7 @@ import pytest
 from helpers import differential as D
 
 SEED = 20261127
-N_CASES = dict(PainleveRod=40, PainleveRodSI=40, TwoLinkArm=40, ShakerTable=40)
+N_CASES = dict(PainleveRod=60, PainleveRodSI=60, TwoLinkArm=60, ShakerTable=60)
 SETTINGS = ("CS default", "CS loose", "CS tight", "ME")
 MAX_LEFT_OUT = 0.1
 

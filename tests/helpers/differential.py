@@ -409,6 +409,6 @@ def plan(model, n, seed):
     out = []
     for case in cases(model, n, seed):
         loose, tight, me = tolerances(case, rng)
-        steps = int(rng.choice([1, 3, 10]))
+        steps = int(rng.choice([1, 3, 10, 60]))
         out.append((case, [("CS", None, steps), ("CS", loose, steps), ("CS", tight, steps), ("ME", me, 1)]))
     return out
