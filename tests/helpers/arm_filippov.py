@@ -205,6 +205,8 @@ def _rhs(p, th0, contact, s):
 
     def f(t, z):
         t1, t2, o1, o2 = a0 + z[0], b0 + z[1], z[2], z[3]
+        if not math.isfinite(t1 + t2 + o1 + o2):    # an overflowed trial step: NaN makes DOP853 reject it
+            return np.full(4, np.nan)
         T = _terms(p, t1, t2, o1, o2)
         if contact:
             d1, d2 = _contact(p, T, s)[:2]
