@@ -181,3 +181,24 @@ def test_arm_iwc_converges_to_e_in_both_interfaces(version):
         assert abs(w_cs - w_me) <= 100 * (1e-6 + 1e-8), f"eps {eps:g}: CS w {w_cs:.6g}, ME w {w_me:.6g}"
     for i, err in errors.items():
         assert err[-1] < err[0] / 10, f"{i}: |w/v0 - e| = {err} at eps = {EPS}"
+
+
+# ------------------------------------------------------------------------------------- the coefficients
+@pytest.mark.parametrize("version", D.VERSIONS)
+def test_arm_cases_start_in_the_paradox_by_the_fmus_own_outputs(version):
+    """The random arm cases' start (tip on the floor, w = 0, v = 1 m/s, Theorem 1's quadrant by
+    helpers.arm_lagrange): the FMU's outputs a, b, p_+-, q_+- there are the same numbers."""
+    loaded = D.Loaded(D.fmu_path("TwoLinkArm", version))
+    names = ("a", "b", "p_plus", "p_minus", "q_plus", "q_minus")
+    try:
+        for case in D.cases("TwoLinkArm", 8, 5):
+            s = case.start
+            arm = Arm(**{n: s[n] for n in ("H", "m1", "l1", "J1", "m2", "l2", "J2", "g", "mu")})
+            th, om = np.array([s["theta1"], s["theta2"]]), np.array([s["omega1"], s["omega2"]])
+            mine = coefficients(arm, th, om)
+            assert mine["p_plus"] < 0 and mine["b"] < 0
+            out = loaded.cs(s, 1e-12, names)
+            for n in names:
+                assert out[n] == pytest.approx(mine[n], rel=1e-6, abs=1e-9), n
+    finally:
+        loaded.close()

@@ -108,11 +108,17 @@ def initial_mode(p, th, om):
     return contact, (1 if v > 0 else -1 if v < 0 else 0)
 
 
-def simulate(params, th0, om0, t_end=None, stop_at_return=True, rtol=1e-11, scale=None, max_events=200):
+MAX_EVALUATIONS = 200_000     # right-hand sides per run: an IWC takes a few thousand; lasting contact, millions
+
+
+def simulate(params, th0, om0, t_end=None, stop_at_return=True, rtol=1e-11, scale=None, max_events=200,
+             max_evaluations=MAX_EVALUATIONS):
     """Integrate the arm from (th0, om0) at t = 0 to t_end, or to the return to y = 0 after a
     contact if stop_at_return and that comes first. rtol: DOP853's; the absolute tolerances are
     rtol times the contact's scales (angles: M g/(k L) and the tip's speed over L; rates: the speed
-    over L). scale: the tip's speed scale (|v0| + |w0| by default)."""
+    over L). scale: the tip's speed scale (|v0| + |w0| by default). Raises ArmReferenceError after
+    max_evaluations right-hand sides (a tip that stays on the floor, stiff, takes steps of the
+    contact's period for as long as it stays)."""
     p = params if isinstance(params, Params) else Params.of(params)
     th0, om0 = np.asarray(th0, float), np.asarray(om0, float)
     J = jacobian(_ArmView(p), th0)
@@ -128,10 +134,10 @@ def simulate(params, th0, om0, t_end=None, stop_at_return=True, rtol=1e-11, scal
     t_lift = lift = None
     if contact and s == 0:
         s = _at_rest(p, th0, z)
-    name = None
+    name, budget = None, [0]
     for _ in range(max_events):
         fns, names = _events(p, th0, contact, s, touched, t, _CROSSED.get(name))
-        rhs = _rhs(p, th0, contact, s)
+        rhs = _counted(_rhs(p, th0, contact, s), budget, max_evaluations)
         with np.errstate(over="ignore", invalid="ignore"):  # DOP853's rejected trial steps may overflow
             sol = solve_ivp(rhs, (t, t_end), z, method="DOP853", rtol=rtol, atol=atol, events=fns)
         if sol.status == -1:
@@ -198,6 +204,15 @@ def _project(p, th0, z):
     b1, b2 = _solve(A, B, C, wt1, wt2)
     lam = (wt1 * om[0] + wt2 * om[1]) / (wt1 * b1 + wt2 * b2)
     return np.array([z[0], z[1], om[0] - lam * b1, om[1] - lam * b2])
+
+
+def _counted(f, budget, limit):
+    def counted(t, z):
+        budget[0] += 1
+        if budget[0] > limit:
+            raise ArmReferenceError(f"more than {limit} right-hand sides by t = {t:.6g}")
+        return f(t, z)
+    return counted
 
 
 def _rhs(p, th0, contact, s):
