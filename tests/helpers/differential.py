@@ -89,7 +89,8 @@ class Loaded:
                 h = stop_time / steps
                 for i in range(steps):
                     t = i * h
-                    fmu.doStep(currentCommunicationPoint=t, communicationStepSize=stop_time - t if i == steps - 1 else h)
+                    size = stop_time - t if i == steps - 1 else h      # the last step ends at stop_time exactly
+                    fmu.doStep(currentCommunicationPoint=t, communicationStepSize=size)
                     if every_step:
                         every_step((i + 1) * h, get)
                 out = dict(zip(outputs, get(outputs)))
