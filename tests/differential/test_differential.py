@@ -27,8 +27,8 @@ Where: the rod (and the SI rod) at its return to y = 0 after the first contact, 
 cases up to 1.5 time units later through the flight and the contacts after it (the hand-overs of
 Co-Simulation's solvers); the arm at its return; the table after at most 5 periods (a solver's
 phase error grows with each). A draw whose reference cannot give that point (an arm tip or a rod
-that stays on the floor, a reference that misses a hop) is replaced and counted
-(differential.REDRAWN, printed by bench/differential.py).
+that stays on the floor, a reference that misses a hop) is drawn again (the arm) or compared at
+its return instead (the rod), and counted (differential.REDRAWN, printed by bench/differential.py).
 
 Each case is run by both FMI versions and all four interface settings. bench/differential.py runs
 thousands of cases off CI."""
