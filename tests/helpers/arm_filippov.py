@@ -41,9 +41,17 @@ class Params:
         return cls(**{n: float(d[n]) for n in ("m1", "m2", "l1", "l2", "J1", "J2", "g", "mu", "H", "k", "c")})
 
 
-def _terms(p, t1, t2, o1, o2):
+def _height(p, a0, b0, y0, d1, d2):
+    """The tip's height at angles (a0 + d1, b0 + d2) from its height y0 at (a0, b0), by differences of
+    sines (sin(a + d) - sin a = 2 cos(a + d/2) sin(d/2)): no rounding of H + l1 sin + l2 sin, whose
+    1e-16 m times k ~ 1e11 N/m would be a force at the start."""
+    return y0 + 2 * (p.l1 * math.cos(a0 + d1 / 2) * math.sin(d1 / 2) + p.l2 * math.cos(b0 + d2 / 2) * math.sin(d2 / 2))
+
+
+def _terms(p, t1, t2, o1, o2, y=None):
     """Mass matrix (A, B; B, C), generalized applied forces (Q1, Q2), the tip's Jacobian rows
-    W_T = (wt1, wt2), W_N = (wn1, wn2), its velocity products (pT, pN), and y, v, w."""
+    W_T = (wt1, wt2), W_N = (wn1, wn2), its velocity products (pT, pN), and y (given, or from H and
+    the angles), v, w."""
     s1, c1, s2, c2 = math.sin(t1), math.cos(t1), math.sin(t2), math.cos(t2)
     h = p.m2 * p.l1 * p.l2 / 2
     cd, sd = math.cos(t1 - t2), math.sin(t1 - t2)
@@ -55,7 +63,8 @@ def _terms(p, t1, t2, o1, o2):
     wt1, wt2, wn1, wn2 = -p.l1 * s1, -p.l2 * s2, p.l1 * c1, p.l2 * c2
     pT = -p.l1 * c1 * o1 * o1 - p.l2 * c2 * o2 * o2
     pN = -p.l1 * s1 * o1 * o1 - p.l2 * s2 * o2 * o2
-    y = p.H + p.l1 * s1 + p.l2 * s2
+    if y is None:
+        y = p.H + p.l1 * s1 + p.l2 * s2
     return A, B, C, Q1, Q2, wt1, wt2, wn1, wn2, pT, pN, y, wt1 * o1 + wt2 * o2, wn1 * o1 + wn2 * o2
 
 
@@ -128,6 +137,9 @@ def simulate(params, th0, om0, t_end=None, stop_at_return=True, rtol=1e-11, scal
     if t_end is None:
         t_end = 1e3 * math.sqrt(p.M / p.k) + 10 * speed / p.g
     contact, s = initial_mode(p, th0, om0)
+    y0 = p.H + p.l1 * math.sin(th0[0]) + p.l2 * math.sin(th0[1])
+    w0 = p.l1 * math.cos(th0[0]) * om0[0] + p.l2 * math.cos(th0[1]) * om0[1]
+    on_surface = contact and -p.k * y0 - p.c * w0 <= 0     # in contact with no force yet: on F_N = 0
     touched = contact
     z, t, phases = np.concatenate([[0.0, 0.0], om0]), 0.0, []
     t_begin = 0.0 if contact else None
@@ -136,8 +148,9 @@ def simulate(params, th0, om0, t_end=None, stop_at_return=True, rtol=1e-11, scal
         s = _at_rest(p, th0, z)
     name, budget = None, [0]
     for _ in range(max_events):
-        fns, names = _events(p, th0, contact, s, touched, t, _CROSSED.get(name))
-        rhs = _counted(_rhs(p, th0, contact, s), budget, max_evaluations)
+        crossed = _CROSSED.get(name) if name else ("lift" if on_surface else None)
+        fns, names = _events(p, th0, y0, contact, s, touched, t, crossed)
+        rhs = _counted(_rhs(p, th0, y0, contact, s), budget, max_evaluations)
         with np.errstate(over="ignore", invalid="ignore"):  # DOP853's rejected trial steps may overflow
             sol = solve_ivp(rhs, (t, t_end), z, method="DOP853", rtol=rtol, atol=atol, events=fns)
         if sol.status == -1:
@@ -180,7 +193,8 @@ class _ArmView:
 
 def _run(p, th0, t, z, phases, t_begin, t_lift, lift=None):
     th, om = th0 + z[:2], z[2:]
-    T = _terms(p, th[0], th[1], om[0], om[1])
+    y0 = p.H + p.l1 * math.sin(th0[0]) + p.l2 * math.sin(th0[1])
+    T = _terms(p, th[0], th[1], om[0], om[1], _height(p, th0[0], th0[1], y0, z[0], z[1]))
     return Run(t, th, om.copy(), T[11], T[12], T[13], list(phases), t_begin, t_lift, lift)
 
 
@@ -215,14 +229,14 @@ def _counted(f, budget, limit):
     return counted
 
 
-def _rhs(p, th0, contact, s):
+def _rhs(p, th0, y0, contact, s):
     a0, b0 = float(th0[0]), float(th0[1])
 
     def f(t, z):
         t1, t2, o1, o2 = a0 + z[0], b0 + z[1], z[2], z[3]
         if not math.isfinite(t1 + t2 + o1 + o2):    # an overflowed trial step: NaN makes DOP853 reject it
             return np.full(4, np.nan)
-        T = _terms(p, t1, t2, o1, o2)
+        T = _terms(p, t1, t2, o1, o2, _height(p, a0, b0, y0, z[0], z[1]))
         if contact:
             d1, d2 = _contact(p, T, s)[:2]
         else:
@@ -236,11 +250,11 @@ _CROSSED = {"lift": "re-contact", "re-contact": "lift", "v=0": "v=0", "slip+": "
             "return": "touch"}
 
 
-def _events(p, th0, contact, s, touched, t0, crossed):
+def _events(p, th0, y0, contact, s, touched, t0, crossed):
     a0, b0 = float(th0[0]), float(th0[1])
 
     def terms(z):
-        return _terms(p, a0 + z[0], b0 + z[1], z[2], z[3])
+        return _terms(p, a0 + z[0], b0 + z[1], z[2], z[3], _height(p, a0, b0, y0, z[0], z[1]))
 
     def y(z):
         return terms(z)[11]

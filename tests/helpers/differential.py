@@ -285,7 +285,7 @@ def arm_parameters(rng, v0=1.0):
 @functools.lru_cache(maxsize=None)
 def _arm_reference(params_items, th, om):
     run = AF.simulate(dict(params_items), np.array(th), np.array(om), rtol=REF_RTOL)
-    if run.t_contact_end is None or run.events[-1] != "return":
+    if run.t_contact_end is None or not run.t_contact_end > 0 or run.events[-1] != "return":
         raise RuntimeError(f"the reference arm did not return: {run.events}")
     return run
 
