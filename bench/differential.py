@@ -34,7 +34,8 @@ def main(argv=None):
         t0 = time.perf_counter()
         plan = [(case, runs, D.sensitive(case)) for case, runs in D.plan(model, args.cases, args.seed)]
         left_out = sum(s for _, _, s in plan)
-        extra = f", {D.REDRAWN[model]} drawn again (no return)" if model in D.REDRAWN else ""
+        extra = (f", {D.REDRAWN[model]} draws the reference could not compare (the arm: drawn again; the rods: "
+                 f"compared at the return)") if model in D.REDRAWN else ""
         print(f"{model}: {len(plan)} cases, {left_out} left out{extra}; references {time.perf_counter() - t0:.1f} s",
               flush=True)
         for version in D.VERSIONS:
