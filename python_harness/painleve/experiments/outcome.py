@@ -67,7 +67,7 @@ class Outcome:
     def as_row(self):
         """A flat dict: the case, the outcome, the predictions and the errors."""
         predicted = an.predict(self.case)
-        # shallow: asdict's deep copy of the case and the stats is a sweep's row's largest cost (issue #28)
+        # shallow: asdict's deep copy of the case and the stats is a sweep's row's largest cost
         row = {**_fields(self.case), **{k: v for k, v in _fields(self).items() if k not in ("case", "solver_stats")}}
         row.update(e=predicted.e, predicted_w=predicted.e * self.case.v0, predicted_phi=predicted.phi,
                    w_error=self.w_error, phi_error=self.phi_error, theta_error=self.theta_error,
@@ -117,7 +117,7 @@ def flight_back_to_floor(state):
     y, w, v = float(state["y"]), float(state["w"]), float(state["v"])
     # Written as increments from `state` (sin(th + ph s) - sin th = 2 cos(th + ph s/2) sin(ph s/2)):
     # at a return with w = O(eps) the height's O(1) terms would cancel to a rounding error of
-    # 1e-16 / w in the time, O(1e-10) at eps = 1e-6 (issue #28).
+    # 1e-16 / w in the time, O(1e-10) at eps = 1e-6.
     # height(s) = y + w s - s^2/2 + ph s cos th - 2 cos(th + ph s/2) sin(ph s/2), and its derivative
     # speed(s) = w(s) = w - s + 2 ph sin(th + ph s/2) sin(ph s/2), written out in the loop (a sweep
     # runs it for every case).

@@ -163,7 +163,7 @@ def video_data(experiment, p=VIDEO):
     return out
 
 
-# ------------------------------------------------------------------ eLaw (issue #16)
+# ------------------------------------------------------------------ eLaw
 # e(delta, theta0) against the compliance law's nonlinearity: the rigid limit (rigid_limit)
 # beside the FMU's w/v0 at small eps, each parameter alone, for three dampings.
 LAW = dict(alpha=3.0, mu=3.0, theta0=0.9, phi0=0.5, v0=1.0)

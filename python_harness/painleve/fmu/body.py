@@ -1,4 +1,4 @@
-"""Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables (issue #27).
+"""Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables.
 
 A body FMU has continuous states (whatever they are), the contact point's height `y`, slip speed
 `v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
