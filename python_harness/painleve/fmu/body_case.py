@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from ..theory import general
 from ..theory.hypotheses import HypothesisError
-from .body import Body, BodyOutcome
+from .body import Body
 
 
 @dataclass(frozen=True)
@@ -60,7 +60,6 @@ def predict(body: Body, case: BodyCase) -> BodyPrediction:
 
 
 def run(body: Body, case: BodyCase):
-    """(BodyPrediction, BodyOutcome) of one case."""
+    """(BodyPrediction, Outcome) of one case, through the interface `body` was opened with."""
     predicted = predict(body, case)
-    outcome: BodyOutcome = body.iwc(predicted.start)
-    return predicted, outcome
+    return predicted, body.iwc(predicted.start, case=case)
