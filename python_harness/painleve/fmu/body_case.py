@@ -59,7 +59,8 @@ def predict(body: Body, case: BodyCase) -> BodyPrediction:
                           theorem=theorem, e=e, w1_star=w1s, hypotheses=failed)
 
 
-def run(body: Body, case: BodyCase):
+def run_body(body: Body, case: BodyCase):
     """(BodyPrediction, Outcome) of one case, through the interface `body` was opened with."""
     predicted = predict(body, case)
     return predicted, body.iwc(predicted.start, case=case)
+

@@ -6,7 +6,7 @@ from dataclasses import replace
 
 from ..experiments.outcome import w_error
 from ..fmu.body import Body, BodyError
-from ..fmu.body_case import predict, run
+from ..fmu.body_case import predict, run_body
 from ..fmu.experiment import FMI_TYPES
 from .report import Check
 
@@ -47,7 +47,7 @@ def _start_checks(body, case, eps, checks):
 def _convergence_checks(body, case, epsilons, interface, e):
     checks, errors = [], []
     for eps in epsilons:
-        predicted, outcome = run(body, replace(case, epsilon=eps))
+        predicted, outcome = run_body(body, replace(case, epsilon=eps))
         v0 = predicted.start_v0
         err = w_error(outcome.w, v0, predicted.e)
         errors.append(abs(err))
