@@ -40,7 +40,7 @@ from ..experiments.case import Case, horizon
 from ..experiments import interrupt
 from ..experiments.outcome import SimulationError, back_on_floor, outcome_of_trajectory
 from . import fmi3_adapter
-from .cs_calls import DirectCalls, WrapperCalls, contact_and_mode, initialize
+from .cs_calls import DirectCalls, WrapperCalls, contact_and_mode
 from .cs_fast_loop import READ, run_co_simulation
 from .me_fast_loop import run_model_exchange
 
@@ -178,10 +178,6 @@ class Experiment:
             interrupt.check()       # a failure that a dropped Ctrl-C caused is the Ctrl-C
             errors = [message for status, _, message in self.messages if status >= FMI2_ERROR]
             raise SimulationError(f"{what}: the FMU stopped: {errors[0] if errors else err}") from err
-
-    def start(self, case, relative_tolerance):
-        """The instance set up with the case's start values and initialized (fmi2ExitInitializationMode done)."""
-        initialize(self.instance, self.vr, case.start_values(), relative_tolerance)
 
     def read(self, names):
         """{name: value} of Real variables of the instance."""
