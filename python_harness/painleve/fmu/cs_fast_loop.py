@@ -100,8 +100,10 @@ def run_stepped(experiment, case, first=None, prediction=None):
         while t < stop:
             values = calls.step(t, step)
             t, step = t + step, h
-            if values[_CONTACT_END] > 0 and values[_Y] >= 0:
-                break                                 # left the floor, and back above it
+            # Touched: the record says a contact has ended. Contact is not read each step: there is
+            # none above the floor (y > 0), and the record's check (record_tells) reads it at the end.
+            if back_on_floor(values[_CONTACT_END] > 0, False, values[_Y]):
+                break
         else:
             raise no_return(case, stop)
         switches, sticks, contact = calls.end()
