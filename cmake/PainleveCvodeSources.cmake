@@ -1,4 +1,4 @@
-# The CVODE subset a source FMU carries (issue #26), so that an importer's own
+# The CVODE subset a source FMU carries, so that an importer's own
 # compiler (fmpy's build_platform_binary, OpenModelica's importFMU with sources)
 # builds a Co-Simulation binary with no SUNDIALS installed: from the pinned
 # SUNDIALS tree that `run.sh platforms` passes as -DPAINLEVE_CVODE_SOURCE_DIR

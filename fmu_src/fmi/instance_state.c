@@ -26,7 +26,7 @@
     if (!(cond)) return instance_fail(in, call, __VA_ARGS__)
 
 #define MAGIC "PRODSTAT"
-#define FORMAT_VERSION 3u   /* 3: solver_implicit (issue #28) */
+#define FORMAT_VERSION 3u   /* 3: the record holds solver_implicit */
 
 typedef struct {
     double time, tolerance, last_successful_time;

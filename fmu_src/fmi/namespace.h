@@ -4,7 +4,7 @@
  * so the sources can be linked statically into one program beside another
  * FMU, or beside a copy of themselves with another prefix. Every function or
  * object that one source file gives another is listed here
- * (tests/test_source_fmu.py checks that the prefixed build exports no other). */
+ * (tests/fmu/test_source_fmu.py checks that the prefixed build exports no other). */
 #ifndef NAMESPACE_H
 #define NAMESPACE_H
 

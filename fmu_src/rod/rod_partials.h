@@ -1,4 +1,4 @@
-/* Analytic partial derivatives of the rod's smooth branches (issue #12):
+/* Analytic partial derivatives of the rod's smooth branches:
  * what fmi2GetDirectionalDerivative answers, for every (unknown, known) pair
  * that modelDescription.xml's ModelStructure declares. Physics only, no FMI. */
 #ifndef ROD_PARTIALS_H

@@ -5,6 +5,13 @@
         outcome = ex.run(Case(theta0=1.0, phi0=0.5, epsilon=1e-5))
     analytic.predict(Case(theta0=1.0, phi0=0.5, epsilon=1e-5)).e
 
+Any body FMU (the rod, TwoLinkArm.fmu, ...), through its own variables and either interface:
+
+    from painleve import Body, BodyCase, run_body
+    with Body("build/TwoLinkArm.fmu", fmi_type="CoSimulation") as body:
+        predicted, outcome = run_body(body, BodyCase(given=(), epsilon=1e-4))   # its own start, on the floor
+    outcome.w / predicted.start_v0, predicted.e     # an Outcome as ex.run's; e from the FMU's coefficients
+
 The names below are the package's public face; each is imported on first use, so that
 `import painleve` (and the theory alone) loads no fmpy. The layers behind them:
 theory < experiments < fmu < coupling, validation, sweep < figures < cli (docs/architecture.md).
@@ -16,6 +23,8 @@ _PUBLIC = {
     "Case": "experiments.case", "Outcome": "experiments.outcome", "SimulationError": "experiments.outcome",
     "run_reference": "experiments.reference",
     "Experiment": "fmu.experiment", "FmuLoadError": "fmu.experiment", "run_iwc": "fmu.experiment",
+    "Body": "fmu.body", "BodyError": "fmu.body", "BodyCase": "fmu.body_case",
+    "run_body": "fmu.body_case", "general": "theory.general",
     "si": "coupling.si", "SIExperiment": "coupling.si_experiment",
     "validate": "validation.suite", "SweepSpec": "sweep.spec", "run_sweep": "sweep.run",
     "make_figures": "figures.paper",

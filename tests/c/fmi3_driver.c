@@ -10,7 +10,7 @@
  * Execution, clocks, Configuration Mode, per-element dependencies).
  *
  * Built with AddressSanitizer + UBSan (fmi3_driver_asan) and plain for
- * valgrind (fmi3_driver); tests/test_c_robustness.py runs it.
+ * valgrind (fmi3_driver); tests/fmu/test_c_robustness.py runs it.
  *
  *   fmi3_driver [--lib PATH] [--no-conformance | --conformance-only]
  *

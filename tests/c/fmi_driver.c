@@ -7,7 +7,7 @@
  * and instantiate/simulate/free cycles with a flat resident set.
  *
  * Built with AddressSanitizer + UBSan (fmi_driver_asan) and plain for
- * valgrind and the memory soak (fmi_driver); tests/test_c_robustness.py runs it.
+ * valgrind and the memory soak (fmi_driver); tests/fmu/test_c_robustness.py runs it.
  *
  *   fmi_driver [--lib PATH] [--cycles N] [--max-rss-growth-kb K] [--no-api]
  *              [--no-conformance | --conformance-only]

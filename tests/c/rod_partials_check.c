@@ -5,7 +5,7 @@
  * held fixed, so each function is one smooth branch and the differences
  * never cross a switching surface. Also: dx_x is rod_jacobian, bit for bit.
  *
- * Built and run by tests/test_rod_partials.py. Prints every disagreement and
+ * Built and run by tests/fmu/test_rod_partials.py. Prints every disagreement and
  * exits 1 if there is any. */
 #include <math.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* rod.c's event update on states placed exactly on a switching surface, which
  * no importer reaches on purpose but round-off does: the state must leave the
  * surface to the side the mode lives on, by moving a state the indicator
- * depends on. Built by tests/c/CMakeLists.txt, run by tests/test_c_robustness.py;
+ * depends on. Built by tests/c/CMakeLists.txt, run by tests/fmu/test_c_robustness.py;
  * exit status 0 only if every check passed. */
 #include <math.h>
 #include <stdio.h>

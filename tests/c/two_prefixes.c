@@ -2,7 +2,7 @@
  * and B_ and linked statically into this one program, run side by side: the
  * default experiment through Co-Simulation, steps interleaved. They must not
  * share anything, so both must end exactly where one run alone ends.
- * Built and run by tests/test_source_fmu.py; prints "w_A w_B w_alone". */
+ * Built and run by tests/fmu/test_source_fmu.py; prints "w_A w_B w_alone". */
 #include <stdio.h>
 #include <stdlib.h>
 

@@ -40,9 +40,10 @@ def test_the_table_names_the_body_and_the_theorem():
 def test_validate_on_the_rod_through_the_body_path_passes():
     r = run("validate", "--fmu", built_fmu("PainleveRod.fmu"), *ROD, "--json", check_rc=0)
     out = json.loads(r.stdout)
-    assert out["passed"] and len(out["checks"]) == 6
-    errors = next(c for c in out["checks"] if c["id"].endswith("convergence"))["numbers"]["errors"]
-    assert errors[-1] < errors[0] / 10
+    assert out["passed"] and len(out["checks"]) == 2 + 2 * 4      # the start; three eps and the trend, ME and CS
+    for interface in ("ME", "CS"):
+        errors = next(c for c in out["checks"] if c["id"] == f"body/{interface}/all/convergence")["numbers"]["errors"]
+        assert errors[-1] < errors[0] / 10
 
 
 def test_validate_outside_the_paradox_fails_naming_it():
@@ -79,3 +80,24 @@ def test_theorem_2_through_the_body_path_splits_at_w1_star(w10, outcome):
     assert out["simulated"]["iwc"] == (outcome == "IWC")
     table = run("iwc", "--fmu", built_fmu("PainleveRod.fmu"), *args, check_rc=0).stdout
     assert next(line for line in table.splitlines() if line.startswith("outcome")).split()[1:] == [outcome, outcome]
+
+
+@pytest.mark.parametrize("fmu", ["PainleveRod.fmu", "TwoLinkArm.fmu"])
+def test_iwc_through_co_simulation_runs_the_fmus_integrator_and_agrees_with_model_exchange(fmu):
+    """--interface CS is honoured on the generic path: the run is the FMU's own integrator's (its phases
+    from the FMU's record), and its return is Model Exchange's to the solvers' tolerance (eps / 100)."""
+    args = ROD if fmu == "PainleveRod.fmu" else []
+    me, cs = (json.loads(run("iwc", "--fmu", built_fmu(fmu), *args, "--eps", "1e-3", "--interface", i, "--json",
+                             check_rc=0).stdout) for i in ("ME", "CS"))
+    assert (me["interface"], cs["interface"]) == ("ME", "CS") and me["simulated"] != cs["simulated"]
+    assert cs["simulated"]["iwc"] == me["simulated"]["iwc"] is True
+    for k in ("w", "t_return", "stick"):
+        assert cs["simulated"][k] == pytest.approx(me["simulated"][k], rel=1e-3)
+    if fmu == "PainleveRod.fmu":
+        assert cs["simulated"]["w"] == pytest.approx(A.e(1.0, 1.0), rel=2e-2)     # Theorem 1 at eps = 1e-3
+
+
+@pytest.mark.parametrize("args,option", [(["--theta0", "0.9"], "--theta0"), (["--mu", "2"], "--mu")])
+def test_a_rod_option_the_body_path_cannot_honour_is_an_error(args, option):
+    r = run("iwc", "--fmu", built_fmu("TwoLinkArm.fmu"), *args)
+    assert r.returncode == 2 and option in one_line_error(r) and "--set" in one_line_error(r)

@@ -94,3 +94,15 @@ def test_the_painleve_commands_run_as_written_and_do_what_their_comments_say(tmp
     df = pd.read_parquet(tmp_path / "out" / "sweep.parquet")
     assert len(df) == 50 * 2 * 4 * 3 and df["id"].is_unique
     assert (tmp_path / "out" / "couple.png").exists() and "impulse of F_N" in couple
+
+
+def test_the_readme_is_short_and_every_doc_is_in_the_index():
+    """A newcomer's five minutes: the README under about 150 lines; docs/README.md names every page
+    of docs/, and every relative link of the README and the index leads to a file."""
+    assert len(README.splitlines()) <= 150
+    index = (ROOT / "docs" / "README.md").read_text()
+    pages = {p.name for p in (ROOT / "docs").glob("*.md")} - {"README.md"}
+    assert {p for p in pages if f"]({p})" not in index} == set()
+    for text, folder in ((README, ROOT), (index, ROOT / "docs")):
+        for link in re.findall(r"\]\(([^)#:]+)\)", text):
+            assert (folder / link).exists(), link

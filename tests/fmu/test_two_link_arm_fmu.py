@@ -65,12 +65,29 @@ def test_the_fmus_iwc_converges_to_e_and_matches_the_numpy_arm(body):
         assert (got_eps, got_delta) == (pytest.approx(eps, rel=1e-9), pytest.approx(delta, rel=1e-9))
         e = G.e(delta, co)
         out = body.iwc(start)
-        assert out.stuck
+        assert out.iwc
         errors.append(abs(out.w / V0 - e))
         if eps >= 1e-5:    # the same compliant arm in numpy: the same lift-off, far closer than to the limit
             numpy_ratio = lift_off_ratio(ARM, th, V0, eps, delta)[0]
             assert abs(out.w / V0 - numpy_ratio) < 0.05 * errors[-1] + 1e-6
     assert errors[-1] < 3e-3 * e and errors[-1] < errors[0] / 10
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-5])
+def test_the_arm_through_co_simulation_does_what_the_numpy_arm_and_model_exchange_do(arm_fmu, body, eps):
+    """The FMU's own integrator, the return bisected on its steps: w/v0 at the return is the independent
+    numpy arm's, as Model Exchange's is, and the two interfaces see the same phases."""
+    start = body.floor_start(body.compliance(dict(PARAMS, theta1=THETA1), eps, 1.0), V0, guess=dict(theta2=THETA2))
+    me = body.iwc(start, relative_tolerance=1e-10)
+    with Body(arm_fmu, fmi_type="CoSimulation") as cs_body:
+        cs = cs_body.iwc(start, relative_tolerance=1e-10)
+    numpy_ratio = lift_off_ratio(ARM, np.array([THETA1, THETA2]), V0, eps, 1.0)[0]
+    e = G.e(1.0, body.coefficients(start)[0])
+    assert cs.iwc and me.iwc and cs.y >= 0 and cs.state.keys() == me.state.keys()
+    assert abs(cs.w / V0 - numpy_ratio) < 0.05 * abs(numpy_ratio - e) + 1e-6
+    assert cs.w == pytest.approx(me.w, rel=1e-6) and cs.t_return == pytest.approx(me.t_return, rel=1e-6)
+    for phase in ("compression", "stick", "lift_off", "flight_back"):
+        assert getattr(cs, phase) == pytest.approx(getattr(me, phase), abs=1e-5 * me.t_return)
 
 
 def test_painleve_iwc_validate_and_figures_run_the_arm(arm_fmu, tmp_path):
@@ -113,7 +130,7 @@ def test_theorem_2_on_the_fmu_splits_at_w1_star(body):
     w1s = G.w1_star(delta, co)
     for f, iwc in ((0.8, False), (1.2, True)):
         out = body.iwc(body.floor_start(values, 1.0, eps * f * w1s, guess=dict(theta2=THETA2)))
-        assert out.stuck == iwc
+        assert out.iwc == iwc
         assert (out.w == pytest.approx(G.e(delta, co), rel=0.01)) if iwc else (0 < out.w < 20 * eps)
 
 
@@ -129,6 +146,6 @@ def test_the_fmi3_arm_through_simulate_fmu_does_what_the_fmi2_arm_does(body):
             assert start3 == pytest.approx(start2, rel=1e-12, abs=1e-14)
             e = G.e(1.0, arm3.coefficients(start3)[0])
             out3, out2 = arm3.iwc(start3), body.iwc(start2)
-            assert out3.stuck and out3.w == pytest.approx(out2.w, rel=1e-4)
+            assert out3.iwc and out3.w == pytest.approx(out2.w, rel=1e-4)
             errors.append(abs(out3.w / V0 - e))
         assert errors[-1] < errors[0] / 10 and errors[-1] < 3e-3 * e

@@ -75,7 +75,7 @@ def test_w_at_the_end_agrees_with_fmpys_co_simulation_to_the_solver_tolerance(ru
 
 
 def test_energy_never_increases_beyond_the_solver_tolerance(run):
-    """The damper and sliding friction only take energy (README, Sticking and energy); in
+    """The damper and sliding friction only take energy (docs/fmu.md, Sticking and energy); in
     flight it is conserved. The importer passes the FMU's `energy` output, which is the
     rod's energy of the states it passes (rod_sim.rod_energy, derived from the states)."""
     name, r = run

@@ -1,7 +1,8 @@
 /* PainleveRod's metadata: what the generic FMI layer needs to know of this
  * model, in one place. The variable list below drives the value references,
  * range checks, getters, setters and the FMU state; its order is that of
- * modelDescription.xml (tests/test_fmu_standard.py checks the two agree),
+ * modelDescription.xml (the C conformance tests, tests/fmu/test_c_robustness.py,
+ * check every variable through its value reference in the XML),
  * which is not in this folder but at the repository's top level, where the
  * spec names it (CMakeLists.txt's painleve_add_model(PainleveRod ...) line). */
 #ifndef CONFIG_H

@@ -5,7 +5,7 @@
  * z measured from the static equilibrium (gravity is in it). Its surface moves
  * horizontally at belt_speed; the rod's tangential force F_T goes into the
  * table's horizontal guide and the belt's drive. The variable list's order is
- * that of its modelDescription.xml, in this folder (tests/test_shaker_table.py
+ * that of its modelDescription.xml, in this folder (tests/coupling/test_shaker_table_fmi.py
  * checks the two agree). */
 #ifndef CONFIG_H
 #define CONFIG_H

@@ -1,11 +1,15 @@
 """`painleve iwc`, `validate` and `figures` for any body FMU (`--fmu TwoLinkArm.fmu`, or the rod
 through the same path with `--set`): the start, the theory and the figure from the FMU's own outputs
-(fmu.body, validation.body, figures.body), nothing body-specific here."""
+(fmu.body, validation.body, figures.body), through either interface, nothing body-specific here."""
 import math
 
 from ..experiments.strict_json import to_json
 from .errors import UsageError
-from .options import number
+from .options import DEFAULTS, number
+
+ROD_MODEL = "PainleveRod"      # the model whose FMU the rod's own path (its Case, its closed forms) runs
+# The rod's options that a body's case has no use for: given with another value, they are an error.
+ROD_ONLY = ("theta0", "phi0", "alpha", "mu", "kappa", "beta")
 
 
 def assignment(text):
@@ -35,10 +39,20 @@ def body_options(parser, *, case=False):
 
 
 def is_body(fmu, args):
-    """The generic path: the FMU is not the rod, or --set was given."""
+    """The generic path: --set or --guess was given, or the FMU is not of the rod's model."""
     from fmpy import read_model_description
-    names = {v.name for v in read_model_description(fmu).modelVariables}
-    return bool(getattr(args, "set", None)) or not {"theta", "phi", "alpha"} <= names
+    return bool(getattr(args, "set", None) or getattr(args, "guess", None)) or \
+        read_model_description(fmu).modelName != ROD_MODEL
+
+
+def refuse_rod_options(args, command, also=()):
+    """A UsageError naming the first of the rod's options (ROD_ONLY, and `also`: (name, default) pairs) given
+    with a value other than its default: the body path cannot honour it."""
+    given = [k for k in ROD_ONLY if hasattr(args, k) and getattr(args, k) != DEFAULTS[k]]
+    given += [k for k, default in also if getattr(args, k, default) != default]
+    if given:
+        raise UsageError(f"painleve {command}: --{given[0]} is an option of the rod's own path and does nothing "
+                         f"for a body FMU; give the body's start values with --set NAME=VALUE")
 
 
 def _case(args, epsilon):
@@ -52,32 +66,38 @@ def _fmt(x):
 
 
 def run_iwc(args, fmu):
+    from ..experiments.outcome import w_error
     from ..fmu.body import Body
     from ..fmu.body_case import predict
+    from ..fmu.experiment import FMI_TYPES
+    refuse_rod_options(args, "iwc")
     case = _case(args, args.epsilon)
-    with Body(fmu) as body:
+    interface = "Model Exchange" if args.interface == "ME" else "Co-Simulation"
+    with Body(fmu, fmi_type=FMI_TYPES[args.interface]) as body:
         predicted = predict(body, case)
         if predicted.hypotheses:
             raise UsageError(f"painleve iwc: {predicted.hypotheses} at the start "
                              + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
                              + "; choose a configuration inside the paradox region (painleve figures --fmu "
                                "shows it) or another --v0")
-        outcome = body.iwc(predicted.start)
+        outcome = body.iwc(predicted.start, case=case)
         name = body.name
     co = predicted.coefficients
     v0 = predicted.start_v0
-    error = outcome.w / v0 - predicted.e
+    error = w_error(outcome.w, v0, predicted.e)
+    phases = {k: getattr(outcome, k) for k in ("compression", "stick", "lift_off", "flight_back")}
     if args.json:
-        print(to_json({"fmu": fmu, "model": name, "start": predicted.start,
+        print(to_json({"fmu": fmu, "model": name, "interface": args.interface, "start": predicted.start,
                        "coefficients": {k: float(getattr(co, k)) for k in ("a", "b", "p_plus", "p_minus", "q_plus",
                                                                          "q_minus", "S_w")},
                        "predicted": {"quadrant": predicted.quadrant, "theorem": predicted.theorem, "e": predicted.e,
                                      "w1_star": predicted.w1_star, "hypotheses": predicted.hypotheses},
                        "simulated": {"w": outcome.w, "v": outcome.v, "t_return": outcome.t_return,
-                                     "iwc": outcome.stuck, "events": outcome.events, "state": outcome.state},
+                                     "iwc": outcome.iwc, "events": outcome.events, **phases,
+                                     "state": outcome.state},
                        "errors": {"w_error": error}}))
         return 0
-    print(f"IWC of {name}: {fmu} through Model Exchange (generic body path)")
+    print(f"IWC of {name}: {fmu} through {interface} (generic body path)")
     print("start on the floor: " + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items()))
     print(f"coefficients there: a={float(co.a):.4g} b={float(co.b):.4g} p_+={float(co.p_plus):.4g} "
           f"p_-={float(co.p_minus):.4g} q_+={float(co.q_plus):.4g} q_-={float(co.q_minus):.4g} "
@@ -86,7 +106,7 @@ def run_iwc(args, fmu):
           + (f"; w1* = {predicted.w1_star:.6g}" if predicted.theorem == 2 else ""))
     print(f"{'quantity':<22}{'simulated':<16}{'analytic (eps -> 0)':<22}difference")
     expected = "IWC" if predicted.theorem == 1 or case.w0 / case.epsilon < predicted.w1_star else "lift-off"
-    print(f"{'outcome':<22}{'IWC' if outcome.stuck else 'lift-off':<16}{expected:<22}")
+    print(f"{'outcome':<22}{'IWC' if outcome.iwc else 'lift-off':<16}{expected:<22}")
     if expected == "lift-off":
         print(f"{'w at return':<22}{_fmt(outcome.w):<16}{'O(eps)':<22}w/eps = {outcome.w / case.epsilon:.3g}")
     else:
@@ -94,23 +114,23 @@ def run_iwc(args, fmu):
         print(f"{'w/v0 at return':<22}{_fmt(outcome.w / v0):<16}{_fmt(predicted.e) + ' (e)':<22}{diff}")
     print(f"{'v at return':<22}{_fmt(outcome.v):<16}{'0 + O(eps)':<22}")
     print(f"{'t_return':<22}{_fmt(outcome.t_return):<16}{'O(eps ln 1/eps)':<22}events: {outcome.events}")
+    print("phases: " + ", ".join(f"{k} {_fmt(v)}" for k, v in phases.items()))
     return 0
 
 
-def run_validate(args, fmu):
-    from ..validation import report
+def validate_checks(args, fmu):
+    """The checks of `painleve validate` on a body FMU, through the interfaces --interface asks for."""
     from ..validation.body import validate_body
-    checks = validate_body(fmu, _case(args, 1e-4))
-    if args.json:
-        print(to_json({"fmu": fmu, "passed": all(c.passed for c in checks), "checks": [c.as_dict() for c in checks]}))
-    else:
-        print(f"Validation of {fmu} (generic body path)")
-        print(report.table(checks))
-    return 0 if all(c.passed for c in checks) else 1
+    refuse_rod_options(args, "validate", also=(("sample", 24),))
+    interfaces = ("ME", "CS") if args.interface == "all" else (args.interface,)
+    return validate_body(fmu, _case(args, 1e-4), interfaces=interfaces)
 
 
 def run_figures(args, fmu):
     from ..figures.body import paradox_figure
+    if args.only:
+        raise UsageError("painleve figures: --only chooses among the rod's figures; a body FMU has one, its "
+                         "paradox region")
     given = dict(assignment(s) for s in args.set)
     for path in paradox_figure(fmu, args.out, given=given, n=args.points, dpi=args.dpi):
         print(path)

@@ -51,10 +51,22 @@ def add_parser(sub):
     fmu_option(sw)
     interface_option(sw)
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+    b = sw.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): a grid run in this process")
+    b.add_argument("--set", action="append", default=[], metavar="NAME=SPEC",
+                   help="a start value or parameter of the body and its values (a SPEC as below), e.g. "
+                        "theta1=-1.2:-0.8:9 or mu=1,2; with --eps, --delta, --v0, --w10 the grid's axes. Each "
+                        "case's other states are solved so that the contact point is on the floor. Rows: the "
+                        "case, the theory there (quadrant, p_plus, b, theorem, e, w1*) and the simulation (iwc, "
+                        "w, v, t_return, the phases): the paradox map from simulation beside p_plus < 0")
+    b.add_argument("--guess", action="append", default=[], metavar="NAME=VALUE",
+                   help="where to start solving for a state that is not given (picks a branch, e.g. theta2=-1.3)")
 
 
 def run(args):
     from ..fmu.experiment import FMI_TYPES
+    from . import body
+    if (args.set or args.guess or args.fmu) and body.is_body(fmu_file(args.fmu, probe=False, allow_body=True), args):
+        return run_body(args, fmu_file(args.fmu, allow_body=True))
     from ..sweep.run import run_sweep
     from ..sweep.spec import PARAMS, SpecError, SweepSpec
     from ..sweep.store import ResultStore, StoreError
@@ -93,6 +105,56 @@ def run(args):
     print(f"{len(df)} of {spec.total} cases in {args.out} ({', '.join(f'{v} {k}' for k, v in counts.items())}; "
           f"{iwc} IWC); this run: {result.ran} cases in {result.seconds:.1f} s ({rate:.0f} cases/s)"
           + (f", {result.skipped} already done" if result.skipped else ""))
+    return 0
+
+
+ROD_ONLY = ("theta0", "phi0", "alpha", "mu", "kappa", "beta")
+
+
+def run_body(args, fmu):
+    """The sweep of a body FMU (sweep.body): the grid in this process, the rows in one .csv or .parquet file."""
+    import pandas as pd
+    from ..fmu.experiment import FMI_TYPES
+    from ..sweep.body import run_body_sweep, axes_of
+    from ..sweep.spec import SpecError
+    from .body import assignment
+    given = [k for k in ROD_ONLY if getattr(args, k) is not None]
+    given += [f"{k} {getattr(args, k)}" for k, default in (("random", 0), ("seed", 0), ("scheduler", None),
+                                                            ("workers", None), ("batch", None))
+              if getattr(args, k) != default]
+    if given:
+        name = given[0].split()[0]
+        raise UsageError(f"painleve sweep: --{name} is an option of the rod's sweep; a body's sweep is a grid run "
+                         f"in this process over --set NAME=SPEC, --eps, --delta, --v0, --w10")
+    texts = {}
+    for item in args.set:
+        name, sep, text = item.partition("=")
+        if not sep or not name.strip() or not text.strip():
+            raise UsageError(f"painleve sweep: --set takes NAME=SPEC, such as theta1=-1.2:-0.8:9; got {item!r}")
+        texts[name.strip()] = text
+    case_texts = {k: getattr(args, k) for k in ("epsilon", "delta", "v0", "w10") if getattr(args, k) is not None}
+    try:
+        axes = axes_of(texts, case_texts)
+    except SpecError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+    suffix = pathlib.Path(args.out).suffix.lower()
+    if suffix not in (".csv", ".parquet", ".pq"):
+        raise UsageError(f"painleve sweep: --out {args.out}: name the results file with .csv or .parquet")
+    output_path(args.out, "painleve sweep: --out")
+    rows = run_body_sweep(fmu, axes, fmi_type=FMI_TYPES[args.interface],
+                          guess=tuple(assignment(g) for g in args.guess))
+    df = pd.DataFrame(rows)
+    if suffix == ".csv":
+        df.to_csv(args.out, index=False)
+    else:
+        df.to_parquet(args.out, index=False)
+    counts = df["status"].value_counts().to_dict()
+    ran = df[df["iwc"].notna()]
+    paradox = ran["p_plus"] < 0
+    print(f"{len(df)} cases of {fmu} ({args.interface}) in {args.out} "
+          f"({', '.join(f'{v} {k}' for k, v in counts.items())}); paradox map: "
+          f"{int((ran['iwc'].astype(bool) & paradox).sum())} IWC of {int(paradox.sum())} runs with p_plus < 0, "
+          f"{int((ran['iwc'].astype(bool) & ~paradox).sum())} of {int((~paradox).sum())} with p_plus >= 0")
     return 0
 
 

@@ -42,16 +42,20 @@ def run(args):
     if args.fmu and args.fmu_option:
         raise UsageError("painleve validate: give the FMU once (positional or --fmu)")
     args.fmu = args.fmu or args.fmu_option
-    if args.fmu or args.set:
+    generic = False
+    if args.fmu or args.set or args.guess:
         fmu = fmu_file(args.fmu, probe=False, allow_body=True)
-        if body.is_body(fmu, args):
-            return body.run_validate(args, fmu)
-    fmu = fmu_file(args.fmu, probe=False)       # one that does not instantiate fails a check (exit 1)
+        generic = body.is_body(fmu, args)
+    if not generic:
+        fmu = fmu_file(args.fmu, probe=False)       # one that does not instantiate fails a check (exit 1)
     if args.report:
         output_path(args.report, "painleve validate: --report")
     interfaces = None if args.interface == "all" else [args.interface]
     start = time.monotonic()
-    checks = validate(fmu, interfaces=interfaces, sample=args.sample, law=dict(kappa=args.kappa, beta=args.beta))
+    if generic:
+        checks = body.validate_checks(args, fmu)
+    else:
+        checks = validate(fmu, interfaces=interfaces, sample=args.sample, law=dict(kappa=args.kappa, beta=args.beta))
     seconds = time.monotonic() - start
     digest = FmuBlob.read(fmu).digest
     interrupt.check()           # nothing written after a Ctrl-C
@@ -65,7 +69,8 @@ def run(args):
     if args.json:
         print(to_json(_checks_json(checks, fmu, digest, seconds)))
     else:
-        print(f"Validation of {fmu} (sha256 {digest[:12]}…), {seconds:.1f} s"
+        print(f"Validation of {fmu}{' (generic body path)' if generic else ''} (sha256 {digest[:12]}…), "
+              f"{seconds:.1f} s"
               + (f"; report in {args.report}" if args.report else ""))
         print(report.table(checks))
     return 0 if all(c.passed for c in checks) else 1

@@ -1,4 +1,4 @@
-"""The coupled study of issue #15: PainleveRodSI on a ShakerTable, one SSP archive, run by a
+"""The coupled study: PainleveRodSI on a ShakerTable, one SSP archive, run by a
 co-simulation master (painleve.coupling.masters).
 
 Coupling (docs/coupling.md): rod.y_floor <- table.position, rod.w_floor <- table.velocity,
@@ -62,7 +62,7 @@ CONNECTIONS = connections()
 RECORD = tuple(f"{ROD}.{n}" for n in ROD_OUTPUTS + ROD_INPUTS) + \
     tuple(f"{TABLE}.{n}" for n in TABLE_OUTPUTS + TABLE_INPUTS)
 
-# The models' defaults (ISSUE15.md): the rod's (painleve.coupling.si's SIRod and SIState), the table's.
+# The models' defaults: the rod's (painleve.coupling.si's SIRod and SIState), the table's.
 ROD_DEFAULTS = {**SIRod().parameters(), **SIState().start_values()}
 TABLE_DEFAULTS = dict(M=10.0, K=4e4, C=40.0, F0=50.0, frequency=5.0, belt_speed=0.0, position=0.0, velocity=0.0)
 

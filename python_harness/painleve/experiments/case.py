@@ -30,7 +30,7 @@ class Case:
 
     def __hash__(self):
         """The dataclass's hash (of the fields' tuple), computed once: a sweep looks each case up in
-        the predictions' caches several times, and hashing ten floats is a few us (issue #28)."""
+        the predictions' caches several times, and hashing ten floats is a few us."""
         try:
             return self.__dict__["_hash"]
         except KeyError:

@@ -246,5 +246,6 @@ def run_reference(case, method="Radau", relative_tolerance=None, *, jac=True, fi
     stats = dict(nfev=run.nfev, njev=run.njev, nlu=run.nlu, nsteps=run.nsteps, nevents=run.nevents, method=method,
                  relative_tolerance=default_rtol(case.epsilon) if relative_tolerance is None
                  else float(relative_tolerance), modes=run.modes, filippov=filippov)
-    return outcome_from_switches(case, switches, run.t_stop, dict(w=x[W], v=x[V], theta=x[THETA], phi=x[PHI]),
+    back = dict(v=x[V], y=x[Y], w=x[W], theta=x[THETA], phi=x[PHI])
+    return outcome_from_switches(case, switches, run.t_stop, back,
                                  events=run.nevents, solver_stats=stats)

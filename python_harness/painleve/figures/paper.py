@@ -17,7 +17,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..experiments.case import Case
-from ..experiments.outcome import outcome_of_trajectory
+from ..experiments.outcome import outcome_of_trajectory, w_error
 from ..experiments.strict_json import to_json
 from ..fmu.experiment import Experiment
 from ..theory import analytic as an
@@ -88,7 +88,7 @@ def edelta0_data(experiment):
         for eps in E_EPSILONS:
             o = experiment.run(replace(case, epsilon=eps))
             a.append(dict(theta0=float(theta0), epsilon=eps, e_simulated=o.w / o.case.v0, e_analytic=exact,
-                          rel_error=(o.w / o.case.v0 - exact) / exact))
+                          rel_error=w_error(o.w, o.case.v0, exact) / exact))
     b = []
     for theta0 in E_THETAS_B:
         for delta in E_DELTAS:
@@ -163,7 +163,7 @@ def video_data(experiment, p=VIDEO):
     return out
 
 
-# ------------------------------------------------------------------ eLaw (issue #16)
+# ------------------------------------------------------------------ eLaw
 # e(delta, theta0) against the compliance law's nonlinearity: the rigid limit (rigid_limit)
 # beside the FMU's w/v0 at small eps, each parameter alone, for three dampings.
 LAW = dict(alpha=3.0, mu=3.0, theta0=0.9, phi0=0.5, v0=1.0)
@@ -180,7 +180,7 @@ def elaw_data(experiment):
                 case = Case(delta=delta, epsilon=LAW_EPSILON, **LAW, **{parameter: value})
                 o, e = experiment.run(case), an.predict(case).e
                 points.append(dict(parameter=parameter, value=value, delta=delta, e_simulated=o.w / case.v0,
-                                   e_analytic=e, rel_error=(o.w / case.v0 - e) / e))
+                                   e_analytic=e, rel_error=w_error(o.w, case.v0, e) / e))
     return dict(params=dict(LAW, epsilon=LAW_EPSILON), points=points)
 
 

@@ -1,4 +1,4 @@
-"""Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables (issue #27).
+"""Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables.
 
 A body FMU has continuous states (whatever they are), the contact point's height `y`, slip speed
 `v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
@@ -13,22 +13,25 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
   own y, v, w (finite-difference Jacobian; for the arm: theta2 and both rates from theta1);
 - `coefficients(values)`: theory.general.Coefficients at a state, with its epsilon and delta;
 - `iwc(values)`: the run from that start until the contact point, having touched, is back at
-  y = 0 (Model Exchange, fmpy's CVode from event to event, me_fast_loop), its state there.
-
-FMI 2.0 Model Exchange through the fast loop's FMI 2.0 calls; FMI 3.0 through fmpy's simulate_fmu."""
+  y = 0: its Outcome (experiments.outcome), through the interface the Body was opened with:
+  Model Exchange (fmpy's CVode from event to event, me_fast_loop; an FMI 3.0 FMU through fmpy's
+  simulate_fmu) or Co-Simulation (cs_fast_loop.run_to_return: the FMU's own integrator, the
+  return bisected on its steps).
+"""
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from ..experiments.outcome import SimulationError
+from ..experiments.outcome import NoReturn, SimulationError, outcome_from_switches, outcome_of_trajectory
 from ..theory import general
+from . import cs_fast_loop, me_fast_loop
 from .cs_calls import initialize
 from .experiment import Experiment
-from .me_fast_loop import integrate
 
 CONTACT = ("y", "v", "w")
-REQUIRED = CONTACT + ("contact", "epsilon", "delta") + general.NAMES
+REQUIRED = CONTACT + ("contact", "mode", "epsilon", "delta") + general.NAMES
+# What a Co-Simulation run reads besides: the FMU's record of its contact and stick, and its counts.
+REQUIRED_CS = cs_fast_loop.RECORD + ("switches", "sticks")
 STIFFNESS, DAMPING = "k", "c"      # the SI bodies' contact parameters when epsilon, delta are calculated
 
 
@@ -36,31 +39,28 @@ class BodyError(ValueError):
     """The FMU is not a body the harness can run, or no start state satisfies what was asked."""
 
 
-@dataclass(frozen=True)
-class BodyOutcome:
-    """A run's state at the contact point's return to y = 0 after contact."""
-    w: float
-    v: float
-    y: float
-    t_return: float
-    stuck: bool          # the run went through a stick (mode 0), if the FMU reports `mode`
-    events: int
-    state: dict          # every continuous state there
-
-
 class Body:
-    """One body FMU, extracted and instantiated once (Experiment), for any number of evaluations and runs."""
+    """One body FMU, extracted and instantiated once (Experiment) for one interface (fmpy's fmi_type,
+    "ModelExchange" or "CoSimulation"), for any number of evaluations and runs."""
 
-    def __init__(self, fmu_path):
-        self.experiment = Experiment(fmu_path, fmi_type="ModelExchange")
+    def __init__(self, fmu_path, *, fmi_type="ModelExchange"):
+        self.experiment = Experiment(fmu_path, fmi_type=fmi_type)
         md = self.experiment.model_description
         self.variables = {v.name: v for v in md.modelVariables}
-        missing = [n for n in REQUIRED if n not in self.variables]
+        needed = REQUIRED + (REQUIRED_CS if fmi_type == "CoSimulation" else ())
+        missing = [n for n in needed if n not in self.variables]
         if missing:
             self.close()
             raise BodyError(f"{fmu_path} is not a body FMU: it has no variable {', '.join(missing)}")
+        if fmi_type == "CoSimulation" and not md.coSimulation.canGetAndSetFMUstate:
+            self.close()
+            raise BodyError(f"{fmu_path}: its Co-Simulation cannot get and set its state, which a run's return "
+                            f"is located with")
         self.states = [d.variable.derivative.name for d in md.derivatives]
         self.name = md.modelName
+        self.fmi_type = fmi_type
+        # What a run reads at the return: the contact point's height and speeds, and every state.
+        self.read = CONTACT + tuple(s for s in self.states if s not in CONTACT)
 
     def close(self):
         self.experiment.close()
@@ -149,70 +149,39 @@ class Body:
                 break
         return u, r
 
-    def iwc(self, values, *, relative_tolerance=None, horizon=None, doublings=30):
-        """The run from `values` until the contact point, having been in contact, is back at y = 0 with
-        contact off. The horizon, unknown in a body's own time unit, starts at `horizon` (default
-        epsilon) and doubles until the run returns."""
+    def iwc(self, values, *, case=None, relative_tolerance=None, horizon=None, doublings=30):
+        """The Outcome of the run from `values` (its case: `case`, else the values) until the contact point,
+        having been in contact, is back at y = 0 with contact off. The horizon, unknown in a body's own
+        time unit, starts at `horizon` (default epsilon) and doubles until the run returns."""
         eps = self.outputs(values, ("epsilon",))["epsilon"]
         rtol = relative_tolerance or min(1e-6, eps / 100)
         stop = horizon or eps
         for _ in range(doublings):
-            out = self._run(values, rtol, stop)
+            out = self._run(dict(values) if case is None else case, values, rtol, stop, eps)
             if out is not None:
                 return out
             stop *= 2
-        raise SimulationError(f"{self.name}: no return to y = 0 before t = {stop / 2:g}")
+        raise NoReturn(f"{self.name}: no return to y = 0 before t = {stop / 2:g}")
 
-    def _run(self, values, rtol, stop_time):
-        if not self.experiment.model_description.fmiVersion.startswith("2."):
-            return self._run_trajectory(values, rtol, stop_time)
-        seen = dict(touched=False, stuck=False, events=0)
-        back = {}
-        has_mode = "mode" in self.experiment.vr
-
-        def at_event(t):
-            seen["events"] += 1
-            contact = bool(self.experiment.instance.getBoolean([self.experiment.vr["contact"]])[0])
-            if has_mode and contact:
-                seen["stuck"] |= int(self.experiment.instance.getInteger([self.experiment.vr["mode"]])[0]) == 0
-            seen["touched"] |= contact
-            if seen["touched"] and not contact:
-                back.update(self.experiment.read(list(CONTACT) + self.states), t=t)
-                return back["y"] >= 0
-            return False
-
-        with self.experiment.fresh_run(f"{self.name} from {values}") as instance:
-            self._initialize(instance, values, rtol)
-            seen["touched"] = bool(instance.getBoolean([self.experiment.vr["contact"]])[0])
-            integrate(instance, self.experiment.model_description, relative_tolerance=rtol, stop_time=stop_time,
-                      at_event=at_event)
-        if back.get("y", -1.0) < 0:
+    def _run(self, case, values, rtol, stop_time, eps):
+        """The Outcome of one run to stop_time, or None if it is not back on the floor by then."""
+        start = {k: float(x) for k, x in values.items()}
+        if self.fmi_type == "CoSimulation":
+            # a communication step of eps: well inside the flight after the return (O(1) long)
+            return cs_fast_loop.run_to_return(self.experiment, case, start, relative_tolerance=rtol,
+                                              stop_time=stop_time, step=eps, read=self.read)
+        if self.experiment.model_description.fmiVersion.startswith("2."):
+            switches, t, back, returned, stats = me_fast_loop.run_to_return(
+                self.experiment, f"{self.name} from {values}", start, relative_tolerance=rtol, stop_time=stop_time,
+                read=self.read)
+            return outcome_from_switches(case, switches, t, back, events=len(switches) - 1,
+                                         solver_stats=stats) if returned else None
+        # FMI 3.0 Model Exchange: fmpy's simulate_fmu (CVode, events recorded as two rows each)
+        r = self.experiment.simulate_to_return(f"{self.name} from {values}", start,
+                                               output=self.read + ("contact", "mode"), stop_time=stop_time,
+                                               output_interval=stop_time / 500, relative_tolerance=rtol,
+                                               solver="CVode")
+        try:
+            return outcome_of_trajectory(case, r, read=self.read)
+        except NoReturn:
             return None
-        return BodyOutcome(w=back["w"], v=back["v"], y=back["y"], t_return=back["t"], stuck=seen["stuck"],
-                           events=seen["events"], state={s: back[s] for s in self.states})
-
-    def _run_trajectory(self, values, rtol, stop_time):
-        """An FMI 3.0 FMU's run: fmpy's simulate_fmu (Model Exchange, CVode, events recorded as two rows each),
-        stopped one step after the return; the return is the first row after contact with contact off, y >= 0."""
-        seen = dict(touched=False, back=False)
-
-        def step_finished(time, recorder):
-            if seen["back"]:
-                return False
-            contact = bool(self.experiment.instance.getBoolean([self.experiment.vr["contact"]])[0])
-            seen["touched"] |= contact
-            seen["back"] = seen["touched"] and not contact and self.experiment.read(["y"])["y"] >= 0
-            return True
-        names = list(CONTACT) + self.states + ["contact"] + (["mode"] if "mode" in self.experiment.vr else [])
-        r = self.experiment._simulate(f"{self.name} from {values}", start_values=dict(values), output=names,
-                                      stop_time=stop_time, output_interval=stop_time / 500, relative_tolerance=rtol,
-                                      solver="CVode", step_finished=step_finished)
-        touched = np.maximum.accumulate(r["contact"].astype(bool))
-        back = np.nonzero(touched & ~r["contact"].astype(bool) & (r["y"] >= 0))[0]
-        if back.size == 0:
-            return None
-        i = back[0]
-        stuck = bool(np.any((r["mode"][:i] == 0) & r["contact"][:i].astype(bool))) if "mode" in names else False
-        return BodyOutcome(w=float(r["w"][i]), v=float(r["v"][i]), y=float(r["y"][i]), t_return=float(r["time"][i]),
-                           stuck=stuck, events=int(np.sum(np.diff(r["time"][:i + 1]) == 0)),
-                           state={s: float(r[s][i]) for s in self.states})

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 from ..theory import general
 from ..theory.hypotheses import HypothesisError
-from .body import Body, BodyOutcome
+from .body import Body
 
 
 @dataclass(frozen=True)
@@ -59,8 +59,8 @@ def predict(body: Body, case: BodyCase) -> BodyPrediction:
                           theorem=theorem, e=e, w1_star=w1s, hypotheses=failed)
 
 
-def run(body: Body, case: BodyCase):
-    """(BodyPrediction, BodyOutcome) of one case."""
+def run_body(body: Body, case: BodyCase):
+    """(BodyPrediction, Outcome) of one case, through the interface `body` was opened with."""
     predicted = predict(body, case)
-    outcome: BodyOutcome = body.iwc(predicted.start)
-    return predicted, outcome
+    return predicted, body.iwc(predicted.start, case=case)
+

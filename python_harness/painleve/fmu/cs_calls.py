@@ -7,7 +7,7 @@ makes: FMI 2.0, or FMI 3.0 under fmi3_adapter). `DirectCalls` makes the same FMI
 with the same arguments straight into the FMU's C functions, as fmpy typed them
 (fmpy_internals), with the value references' arrays made once per instance: fmpy's wrappers
 build two ctypes arrays and check a status in Python for each call, 11 a case, which cost a
-sweep's case about as much as the FMU's own integration (issue #28). The values are the
+sweep's case about as much as the FMU's own integration. The values are the
 same floats either way (tests/fmu/test_cs_calls.py); a status above fmi2Warning raises
 fmpy's own FMICallException, so a failure reads the same."""
 from ctypes import c_double, c_int, c_uint

@@ -15,9 +15,10 @@ the record read after each, until the rod has left the floor and is back above i
 import math
 from operator import itemgetter
 
-from ..experiments.outcome import (SLIP_BACKWARD, STATE_AT_RETURN, STICK, flight_back_to_floor, no_return,
-                                   outcome_from_switches)
+from ..experiments.outcome import (SLIP_BACKWARD, STATE_AT_RETURN, STICK, back_on_floor, flight_back_to_floor,
+                                   no_return, outcome_from_switches)
 from ..theory.analytic import predict
+from .cs_calls import contact_and_mode, initialize
 
 # The communication step in eps: well inside the flight after the return (O(1) long).
 STEP_IN_EPSILONS = 4
@@ -27,6 +28,8 @@ ROUNDING_SLACK = 1e-4
 RECORD = ("t_stick_begin", "t_stick_end", "t_contact_begin", "t_contact_end")
 READ = RECORD + STATE_AT_RETURN      # what the loop reads after each doStep (cs_calls)
 _CONTACT_END, _Y = READ.index("t_contact_end"), READ.index("y")
+# How closely a body's return is bisected on the Co-Simulation steps: this fraction of its time.
+RETURN_TIME_RESOLUTION = 1e-13
 
 
 def switches_from_record(start, record, sticks):
@@ -97,8 +100,10 @@ def run_stepped(experiment, case, first=None, prediction=None):
         while t < stop:
             values = calls.step(t, step)
             t, step = t + step, h
-            if values[_CONTACT_END] > 0 and values[_Y] >= 0:
-                break                                 # left the floor, and back above it
+            # Touched: the record says a contact has ended. Contact is not read each step: there is
+            # none above the floor (y > 0), and the record's check (record_tells) reads it at the end.
+            if back_on_floor(values[_CONTACT_END] > 0, False, values[_Y]):
+                break
         else:
             raise no_return(case, stop)
         switches, sticks, contact = calls.end()
@@ -121,3 +126,66 @@ def run_co_simulation(experiment, case, prediction=None):
     case.check()
     return (run_stepped(experiment, case, first_step(case, prediction), prediction)
             or run_stepped(experiment, case, prediction=prediction))
+
+
+def run_to_return(experiment, case, start_values, *, relative_tolerance, stop_time, step, read):
+    """One run of any body through Co-Simulation from `start_values`: doSteps of `step` until a
+    communication point at which it is back_on_floor (touched: in contact at a communication point,
+    or a contact the FMU's record says has ended), then that last step bisected, from the FMU state
+    saved before it, down to RETURN_TIME_RESOLUTION of the time: the return as closely as Model
+    Exchange's event locates it. Its Outcome (the Real variables `read`, y among them, at the
+    return; the phases from the FMU's record, switches_from_record; events: the FMU's switches),
+    or None if it is not back by stop_time. The FMU must be able to get and set its state."""
+    instance, vr = experiment.instance, experiment.vr
+    names = list(RECORD) + [n for n in read if n not in RECORD]
+
+    def advance(t, h, touched):
+        instance.doStep(currentCommunicationPoint=t, communicationStepSize=h, noSetFMUStatePriorToCurrentPoint=False)
+        values = experiment.read(names)
+        contact = contact_and_mode(instance, vr)[0]
+        touched = touched or contact or values["t_contact_end"] > 0
+        counts = instance.getInteger([vr["switches"], vr["sticks"]])
+        return values, back_on_floor(touched, contact, values["y"]), touched, counts
+
+    with experiment.fresh_run(f"{case}") as instance:
+        initialize(instance, vr, dict(start_values), relative_tolerance)
+        start = (0.0, *contact_and_mode(instance, vr))
+        t, touched = 0.0, start[1]
+        while t < stop_time:
+            before = instance.getFMUState()
+            try:
+                values, back, now_touched, counts = advance(t, step, touched)
+                if back:
+                    t, values, counts = _bisect_return(instance, advance, before, t, step, touched, (values, counts))
+                    break
+            finally:
+                instance.freeFMUState(before)
+            t, touched = t + step, now_touched
+        else:
+            return None
+    record = {k: values[k] for k in RECORD}
+    switches, sticks = (int(n) for n in counts)
+    implied = [(min(ts, t), contact, mode) for ts, contact, mode in switches_from_record(start, record, sticks)]
+    return outcome_from_switches(case, implied, t, {k: values[k] for k in read}, events=switches)
+
+
+def _bisect_return(instance, advance, before, t, step, touched, at_step_end):
+    """(time, values, counts) at the return within the step from t (state `before`) to t + step, at whose
+    end the run is back on the floor: bisected on the step's length."""
+    lo, hi, at_hi, state_lo = 0.0, step, at_step_end, before
+    try:
+        while hi - lo > RETURN_TIME_RESOLUTION * (t + hi):
+            mid = 0.5 * (lo + hi)
+            instance.setFMUState(state_lo)
+            values, back, now_touched, counts = advance(t + lo, mid - lo, touched)
+            if back:
+                hi, at_hi = mid, (values, counts)
+            else:
+                lo, touched = mid, now_touched
+                if state_lo is not before:
+                    instance.freeFMUState(state_lo)
+                state_lo = instance.getFMUState()
+    finally:
+        if state_lo is not before:
+            instance.freeFMUState(state_lo)
+    return t + hi, at_hi[0], at_hi[1]

@@ -38,9 +38,9 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi
 
 from ..experiments.case import Case, horizon
 from ..experiments import interrupt
-from ..experiments.outcome import SimulationError, outcome_of_trajectory
+from ..experiments.outcome import SimulationError, back_on_floor, outcome_of_trajectory
 from . import fmi3_adapter
-from .cs_calls import DirectCalls, WrapperCalls, contact_and_mode, initialize
+from .cs_calls import DirectCalls, WrapperCalls, contact_and_mode
 from .cs_fast_loop import READ, run_co_simulation
 from .me_fast_loop import run_model_exchange
 
@@ -179,10 +179,6 @@ class Experiment:
             errors = [message for status, _, message in self.messages if status >= FMI2_ERROR]
             raise SimulationError(f"{what}: the FMU stopped: {errors[0] if errors else err}") from err
 
-    def start(self, case, relative_tolerance):
-        """The instance set up with the case's start values and initialized (fmi2ExitInitializationMode done)."""
-        initialize(self.instance, self.vr, case.start_values(), relative_tolerance)
-
     def read(self, names):
         """{name: value} of Real variables of the instance."""
         return dict(zip(names, self.instance.getReal([self.vr[k] for k in names])))
@@ -214,13 +210,14 @@ class Experiment:
         """The trajectory of one case (fmpy's structured array), events included, up to one
         step after the return to the floor."""
         case.check()
-        return self._simulate(case, solver=self.solver, start_values=case.start_values(), output=list(OUTPUTS),
-                              step_finished=self._back_on_floor(), **self.settings(case))
+        return self.simulate_to_return(case, case.start_values(), output=OUTPUTS, solver=self.solver,
+                                       **self.settings(case))
 
-    def _back_on_floor(self):
-        """fmpy's step_finished callback: stop one step after the rod, having touched,
-        is back at y = 0, so that the state after that event is recorded too
-        (with delta = 0 lift-off and the return are one event)."""
+    def simulate_to_return(self, what, start_values, *, output, **settings):
+        """fmpy's simulate_fmu from `start_values` (fmpy's settings: stop_time, relative_tolerance, ...),
+        events recorded, stopped one step after the run is back_on_floor, so that the state after that
+        event is recorded too (with delta = 0 lift-off and the return are one event). `output` must
+        hold y, contact and mode; a failure raises SimulationError naming `what`."""
         seen = {"touched": False, "back": False}
 
         def step_finished(time, recorder):
@@ -228,9 +225,10 @@ class Experiment:
                 return False
             contact = self.contact_and_mode()[0]
             seen["touched"] |= contact
-            seen["back"] = seen["touched"] and not contact and self.read(["y"])["y"] >= 0
+            seen["back"] = back_on_floor(seen["touched"], contact, self.read(["y"])["y"])
             return True
-        return step_finished
+        return self._simulate(what, start_values=dict(start_values), output=list(output), step_finished=step_finished,
+                              **settings)
 
     def simulate_from(self, start_values, *, stop_time, output_interval=None, relative_tolerance=1e-8,
                       output=OUTPUTS, solver="CVode", step_size=None):

@@ -12,7 +12,8 @@ from ctypes import byref, c_long
 
 from fmpy.sundials import CVodeSolver
 
-from ..experiments.outcome import STATE_AT_RETURN, no_return, outcome_from_switches
+from ..experiments.outcome import STATE_AT_RETURN, back_on_floor, no_return, outcome_from_switches
+from .cs_calls import initialize
 from .fmpy_internals import c_functions, cvode_get_num_steps, vector_data
 
 
@@ -109,29 +110,40 @@ def integrate(instance, model_description, *, relative_tolerance, stop_time, at_
     return t, dict(nfev=solver.nfev, nsteps=solver.steps)
 
 
-def run_model_exchange(experiment, case):
-    """One case through Model Exchange: the (contact, mode) switches read at each event, the
-    run stopped at the event that returns the rod, having touched, to y = 0."""
-    case.check()
-    settings = experiment.settings(case)
-    switches, back = [], {}
+def run_to_return(experiment, what, start_values, *, relative_tolerance, stop_time, read):
+    """One run of any body through Model Exchange from `start_values`, the (contact, mode) switches
+    read at each event, stopped at the first event after which it is back_on_floor. Returns the
+    switches [(t, contact, mode)] (the start first), the time it stopped, the Real variables `read`
+    (y among them) there, whether it returned, and the solver's counters."""
+    switches, back, returned = [], {}, False
 
     def at_event(t):
+        nonlocal returned
         contact, mode = experiment.contact_and_mode()
         if switches[-1][1:] != (contact, mode):
             switches.append((t, contact, mode))
-        if any(c for _, c, _ in switches) and not contact:
-            back.update(experiment.read(STATE_AT_RETURN))
-            return back["y"] >= 0
-        return False
+        touched = any(c for _, c, _ in switches)
+        if touched and not contact:
+            back.update(experiment.read(read))
+            returned = back_on_floor(touched, contact, back["y"])
+        return returned
 
-    with experiment.fresh_run(case) as instance:
-        experiment.start(case, settings["relative_tolerance"])
+    with experiment.fresh_run(what) as instance:
+        initialize(instance, experiment.vr, start_values, relative_tolerance)
         switches.append((0.0, *experiment.contact_and_mode()))     # the start: a reference, not a switch
-        t, experiment.solver_stats = integrate(instance, experiment.model_description,
-                                               relative_tolerance=settings["relative_tolerance"],
-                                               stop_time=settings["stop_time"], at_event=at_event)
-    if back.get("y", -1) < 0:
+        t, stats = integrate(instance, experiment.model_description, relative_tolerance=relative_tolerance,
+                             stop_time=stop_time, at_event=at_event)
+    return switches, t, back, returned, stats
+
+
+def run_model_exchange(experiment, case):
+    """One case of the rod through Model Exchange (run_to_return), reduced to its Outcome."""
+    case.check()
+    settings = experiment.settings(case)
+    switches, t, back, returned, experiment.solver_stats = run_to_return(
+        experiment, case, case.start_values(), relative_tolerance=settings["relative_tolerance"],
+        stop_time=settings["stop_time"], read=STATE_AT_RETURN)
+    if not returned:
         raise no_return(case, t)
     return outcome_from_switches(case, switches, t, back, events=len(switches) - 1,
                                  solver_stats=dict(experiment.solver_stats))

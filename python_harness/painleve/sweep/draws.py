@@ -1,8 +1,8 @@
 """A random sweep's uniform draws, `np.random.default_rng([seed, id]).random(n)` for many ids at
 once: numpy's SeedSequence (its entropy pool of four 32-bit words, hashmix and mix) and PCG64
 (a 128-bit LCG, XSL-RR output; random() is the top 53 bits) written over arrays of ids. A
-generator made per case costs about 15 us, as much as the rest of a sweep's Python for its row
-(issue #28); the same numbers over arrays cost well under 1 us a case. The values are numpy's
+generator made per case costs about 15 us, as much as the rest of a sweep's Python for its row;
+the same numbers over arrays cost well under 1 us a case. The values are numpy's
 bit for bit (tests/sweep/test_draws.py compares them); ids or seeds outside [0, 2^32) go through
 default_rng itself."""
 import numpy as np

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..experiments.outcome import SimulationError
+from ..experiments.outcome import SimulationError, w_error
 from ..fmu.experiment import Experiment
 from ..theory import analytic as an
 from ..theory.predict_many import predict_many
@@ -118,8 +118,10 @@ def _row(case_id, status, message, c, p, o):
     predicted = (p.e, p.e * c.v0, p.phi, p.w1_star, p.iwc)
     if o is None:
         return head + NOT_RUN + predicted + (float("nan"),) * 3 + (p.time_scale,)
-    return head + (o.iwc, o.w, o.theta, o.phi, o.v, o.t_return, o.compression, o.stick, o.lift_off, o.flight_back,
-                   o.events) + predicted + (o.w / c.v0 - p.e, o.phi - p.phi, o.theta - c.theta0, p.time_scale)
+    s = o.state
+    return head + (o.iwc, s["w"], s["theta"], s["phi"], s["v"], o.t_return, o.compression, o.stick, o.lift_off,
+                   o.flight_back, o.events) + predicted + (w_error(s["w"], c.v0, p.e), s["phi"] - p.phi,
+                                                           s["theta"] - c.theta0, p.time_scale)
 
 
 def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):

@@ -208,7 +208,7 @@ def _or_nan(formula):
 
 def _e_of(case, rod):
     """e of the case's compliance law: the paper's closed form for the linear law, the
-    rigid limit computed numerically for a nonlinear one (rigid_limit, issue #16)."""
+    rigid limit computed numerically for a nonlinear one (rigid_limit)."""
     if not (case.kappa or case.beta):
         return e(case.delta, case.theta0, **rod)
     return float(rigid_limit.e(case.delta, case.theta0, kappa=case.kappa, beta=case.beta, v0=case.v0, **rod))

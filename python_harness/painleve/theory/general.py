@@ -4,7 +4,7 @@ coefficients of eq Painleve at the start state, never from the body's geometry.
 A body whose contact point slips with speed v and leaves the floor with speed w obeys, in the
 paper's scaled form, v' = a + q_s F_N and w' = b + p_s F_N for slip s = sign(v) (eq Painleve);
 while it sticks, w' = b + S_w F_N + O(1) with S_w the Filippov combination of eq Sw. The rod
-(rod_coefficients) is one such body; the two-link arm of issue #27 another (docs/general_body.md,
+(rod_coefficients) is one such body; the two-link arm (TwoLinkArm) another (docs/general_body.md,
 "The theory for d = 2"). Given (a, b, p_+-, q_+-, S_w) and delta this module gives:
 
 * the fast eigenvalues lambda_pm (eq lambdapm), the end of slipping compression (eq initStick);

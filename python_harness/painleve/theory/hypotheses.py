@@ -39,7 +39,7 @@ class Hypotheses:
 
     def bc(self, x):
         # x as it is where it has the shape already (a sweep's scalar case: broadcast_to's
-        # own cost is most of a prediction's, issue #28)
+        # own cost is most of a prediction's)
         x = floats(x)
         return x if x.shape == self.shape else np.broadcast_to(x, self.shape)
 

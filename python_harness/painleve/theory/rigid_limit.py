@@ -1,4 +1,4 @@
-"""The rigid limit eps -> 0 of impact without collision for a nonlinear compliance law (issue #16).
+"""The rigid limit eps -> 0 of impact without collision for a nonlinear compliance law.
 
 The paper (Hogan & Kristiansen) proves Theorem 1 for any normal force
 F_N = eps^-1 h(y/eps, w) with h = -yh - delta w + O((yh + w)^2) (eq hNon) but

@@ -1,0 +1,82 @@
+"""A sweep of any body FMU (`painleve sweep --fmu TwoLinkArm.fmu --set theta1=-1.2:-0.8:9 --set mu=1,2`):
+a grid over start values and parameters the user names, with eps, delta, v0 and w10, each case run
+through fmu.body (its start solved onto the floor, the theory from the FMU's own coefficients) in
+this process. A row holds the case, the theory there (the quadrant, p_plus, b, the theorem, e, w1*)
+and the simulation (whether the contact point stuck, w and v at the return, the phases), and the
+start solved (start_NAME): over the
+configurations, the paradox map from simulation (`iwc`) beside the theory's p_plus < 0.
+
+A case runs whenever a start on the floor is found, inside the theorems' hypotheses ("ok") or not
+("outside": simulated all the same, for the map); a run that is not back on the floor within
+2^DOUBLINGS eps of its own time is "no return"; no start found, or the FMU stopping, is "failed"."""
+import itertools
+import math
+
+from ..experiments.outcome import NoReturn, SimulationError, w_error
+from ..fmu.body import Body, BodyError
+from ..fmu.body_case import BodyCase, predict
+from .spec import Axis, SpecError
+
+CASE_AXES = ("epsilon", "delta", "v0", "w10")     # the case's own axes; the start values are the user's names
+DOUBLINGS = 8
+PHASES = ("compression", "stick", "lift_off", "flight_back")
+
+
+def axes_of(given, case_texts):
+    """The grid's axes: `given` {name: SPEC} (start values, parameters), and `case_texts` {eps, delta, v0,
+    w10: SPEC} for those given; a SPEC as the rod's sweep reads it (a value, a list, lo:hi:n[:log])."""
+    unknown = [k for k in case_texts if k not in CASE_AXES]
+    if unknown:
+        raise SpecError(f"a body's sweep has no case parameter {unknown[0]!r}; give start values with --set")
+    return tuple(Axis.parse(name, text, random=False) for name, text in {**given, **case_texts}.items())
+
+
+def cases(axes, guess=()):
+    """(id, {axis: value}, BodyCase) of every grid point, row-major in the axes' order."""
+    for i, values in enumerate(itertools.product(*(a.grid().tolist() for a in axes))):
+        point = dict(zip((a.name for a in axes), values))
+        case_values = {k: point.pop(k) for k in CASE_AXES if k in point}
+        eps = case_values.get("epsilon", 1e-3)
+        yield i, dict(zip((a.name for a in axes), values)), BodyCase(
+            given=tuple(point.items()), v0=case_values.get("v0"), epsilon=eps, delta=case_values.get("delta", 1.0),
+            w0=eps * case_values.get("w10", 0.0), guess=tuple(guess))
+
+
+def run_body_sweep(fmu, axes, *, fmi_type="ModelExchange", guess=(), progress=None):
+    """The rows (dicts) of the grid `axes` on the body FMU, through the interface `fmi_type`."""
+    rows = []
+    with Body(fmu, fmi_type=fmi_type) as body:
+        for case_id, point, case in cases(axes, guess):
+            rows.append(_row(body, case_id, point, case))
+            if progress:
+                progress(len(rows))
+    return rows
+
+
+def _row(body, case_id, point, case):
+    nan = math.nan
+    row = dict(id=case_id, status="failed", message="", **point)
+    row.update(epsilon=case.epsilon, delta=case.delta, v0=case.v0 if case.v0 is not None else nan, quadrant="", p_plus=nan, b=nan, theorem=0, e=nan, w1_star=nan, iwc=None, w=nan, v=nan,
+               t_return=nan, **dict.fromkeys(PHASES, nan), events=-1, w_error=nan)
+    try:
+        predicted = predict(body, case)
+    except (BodyError, SimulationError) as err:
+        row["message"] = str(err)
+        return row
+    co = predicted.coefficients
+    row.update({f"start_{k}": v for k, v in predicted.start.items() if k not in point})
+    row.update(v0=predicted.start_v0, quadrant=predicted.quadrant, p_plus=float(co.p_plus), b=float(co.b),
+               theorem=predicted.theorem, e=predicted.e, w1_star=predicted.w1_star,
+               status="outside" if predicted.hypotheses else "ok", message=predicted.hypotheses)
+    try:
+        outcome = body.iwc(predicted.start, case=case, doublings=DOUBLINGS)
+    except NoReturn as err:     # no lift-off back to the floor: not an IWC
+        row.update(status="no return", message=str(err), iwc=False)
+        return row
+    except SimulationError as err:
+        row.update(status="failed", message=str(err))
+        return row
+    row.update(iwc=outcome.iwc, w=outcome.w, v=outcome.v, t_return=outcome.t_return, events=outcome.events,
+               w_error=w_error(outcome.w, predicted.start_v0, predicted.e),
+               **{k: getattr(outcome, k) for k in PHASES})
+    return row
