@@ -37,6 +37,9 @@ static int lex_sign(double f0, double f1, double f2)
 
 static bool sticking(ContactMode m) { return m.contact && m.slip == 0; }
 
+static double force_noise(const ContactLaw *law, const BodyState *s);
+static double free_h_rate(const Compliance *h, const BodyState *s, double eps);
+
 Compliance contact_compliance(const ContactLaw *law, double y, double w)
 {
     /* Written so that kappa = beta = 0 evaluates -y/eps - delta w in the same
@@ -296,15 +299,19 @@ static void stop_slip(const Contact *c, const BodyState *s, double x[])
     for (int i = 0; i < b->dof; ++i) x[b->velocity[i]] -= s->friction[i] * impulse;
 }
 
-ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed)
+ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed, double dt)
 {
-    ContactSurfaces on = { .gap = crossed & 1u << CONTACT_Z_Y };
-    if (!(crossed & 1u << CONTACT_Z_FORCE)) return on;
     const BodyState s = contact_body(c, x);
-    /* in flight the indicator is min(-y/eps, h): the smaller one crossed */
-    if (m.contact || contact_compliance(&c->law, s.y, s.w).h < -s.y / c->law.epsilon) on.force = true;
-    else on.gap = true;
-    return on;
+    const double eps = c->law.epsilon;
+    const Compliance h = contact_compliance(&c->law, s.y, s.w);
+    /* in flight the force indicator is min(-y/eps, h): the smaller one crossed */
+    const bool force = crossed & 1u << CONTACT_Z_FORCE && (m.contact || h.h < -s.y / eps);
+    const bool gap = crossed & 1u << CONTACT_Z_Y || (crossed & 1u << CONTACT_Z_FORCE && !force);
+    /* on a surface where the root finder could have put it: within the indicator's change over dt */
+    return (ContactSurfaces){
+        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise,
+        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s),
+    };
 }
 
 ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], ContactSurfaces on, bool *x_changed)

@@ -146,8 +146,9 @@ typedef struct {
  * surfaces `on`. May stop the slip (v = 0, entering or re-deciding stick); says so in *x_changed. */
 ContactMode contact_decide_mode(const Contact *c, ContactMode m, double x[], ContactSurfaces on, bool *x_changed);
 
-/* The surfaces on which indicators of mode m that changed sign (bit i: indicator i) put x. */
-ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed);
+/* The surfaces on which indicators of mode m that changed sign (bit i: indicator i) put x, an
+ * event placed to within dt (scaled time): those whose indicator is within its change over dt. */
+ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const double x[], unsigned crossed, double dt);
 
 /* Moves x off every switching surface on which an indicator of mode m is 0 to within
  * `margin` times its rounding error, or (the surfaces `on`) is on the wrong side, towards the

@@ -143,9 +143,12 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
     const int again = r->returns + (same_instant(r, &instant, time) ? r->events_at_instant : 0);
-    /* the surfaces an integrator located (none at the initial event iteration, nor for an input) */
-    const ContactSurfaces on = e->located && !initial && !floor_jumped
-                                   ? contact_surfaces_of(c, before, x, crossed_since_restart(r, z))
+    /* The surfaces an integrator located (none at the initial event iteration, nor for an input).
+     * An integrator that came straight back to one is too coarse for the derivatives to decide
+     * there (a tolerance of 10): the signs decide again, as for any other state. */
+    const ContactSurfaces on = e->located && !initial && !floor_jumped && r->returns == 0
+                                   ? contact_surfaces_of(c, before, x, crossed_since_restart(r, z),
+                                                         instant.width / time_unit)
                                    : (ContactSurfaces){ 0 };
     bool moved;
     const ContactEventResult result = contact_event_update(

@@ -67,7 +67,10 @@ def test_a_floor_at_constant_velocity_gives_the_fixed_floors_relative_motion(si_
     floor = si.Floor(y0=0.02, w=0.3, v=1.2)
     coarse, _, _ = relative_motion_error(si_fmu_path, fmi_type, rod, state, stop, floor, loads, 1e-8)
     fine, a, b = relative_motion_error(si_fmu_path, fmi_type, rod, state, stop, floor, loads, 1e-10)
-    assert np.any(a["contact"]) and np.array_equal(a["contact"], b["contact"]) and np.array_equal(a["mode"], b["mode"])
+    # the slip's mode in contact (in flight no friction acts: its label follows v only at events)
+    contact = a["contact"].astype(bool)
+    assert np.any(contact) and np.array_equal(a["contact"], b["contact"])
+    assert np.array_equal(a["mode"][contact], b["mode"][contact])
     # The runs differ by CVode's errors only (the moving floor's states are larger, y by y0 + W t and
     # v by U, and so are the errors their relative tolerance allows): the difference is small and
     # falls with the tolerance (measured: up to 2e-6 of a variable's range at rtol 1e-10 in Model
