@@ -8,7 +8,8 @@ through fmpy on one instance: fmi2Reset, setup with the tolerance, the parameter
 set, initialization, the step, the state read.
 
     .venv/bin/python bench/arm_table.py          # prints the markdown table (~2 minutes)
-    .venv/bin/python bench/arm_table.py --equal [--fmu ARM.fmu] [EPS ...]  # each eps at its loosest rtol within 1e-6 relative in w
+    .venv/bin/python bench/arm_table.py --equal [--fmu ARM.fmu] [EPS ...]
+        # each eps at its loosest rtol within 1e-6 relative in w
 
 Per eps, at the FMU's default tolerance (1e-6) and at the harness's min(1e-6, eps/100): the
 largest |w - w_ref| at the reference's return (w_ref: the tests' independent numpy arm,
@@ -158,9 +159,26 @@ def equal_accuracy_markdown(rows, load_before, load_after):
         if r["rtol"] is None:
             lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | |")
             continue
-        lines.append(f"| {r['eps']:.0e} | {r['rtol']:.0e} | {r['us']:.1f} ({r['us_max']:.1f}) | {r['fixed']:.1f} | "
+        lines.append(f"| {r['eps']:.0e} | {r['rtol']:.2g} | {r['us']:.1f} ({r['us_max']:.1f}) | {r['fixed']:.1f} | "
                      f"{r['us'] - r['fixed']:.1f} | {r['err']:.1e} |")
     return lines
+
+
+def arm_equal_markdown(epsilons=EPSILONS, fmu=ARM_FMU):
+    """The section for docs/benchmarks.md (bench.py)."""
+    import os
+    before = os.getloadavg()
+    with Experiment(fmu, fmi_type="CoSimulation") as ex:
+        rows = equal_accuracy_rows(ex, epsilons)
+    return ["## The two-link arm at equal accuracy", "",
+            "TwoLinkArm's four cases (above) per eps at the loosest rtol of bench.py's ladder at which every "
+            "case's w at the numpy arm's return is within 1e-6 relative of it (the rod's criterion in the "
+            "speed limit's table), timed there: one fmi2DoStep per case from Python through fmpy (medians of "
+            f"{REPEATS} runs, median over 5 rounds, median over cases; the slowest case in brackets), the "
+            "same run without its step (fmpy's calls: reset, set-up, values, initialization, reads) and the "
+            "difference, the step's own cost, the figure that compares with the rod's us per case from C "
+            "(whose fixed cost is about 2 us). There is no single-purpose arm to give a ratio.", ""] + \
+        equal_accuracy_markdown(rows, before, os.getloadavg())
 
 
 if __name__ == "__main__":
