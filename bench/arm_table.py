@@ -8,6 +8,8 @@ through fmpy on one instance: fmi2Reset, setup with the tolerance, the parameter
 set, initialization, the step, the state read.
 
     .venv/bin/python bench/arm_table.py          # prints the markdown table (~2 minutes)
+    .venv/bin/python bench/arm_table.py --equal [--fmu ARM.fmu] [EPS ...]
+        # each eps at its loosest rtol within 1e-6 relative in w
 
 Per eps, at the FMU's default tolerance (1e-6) and at the harness's min(1e-6, eps/100): the
 largest |w - w_ref| at the reference's return (w_ref: the tests' independent numpy arm,
@@ -27,7 +29,7 @@ sys.path.insert(0, str(HERE))
 
 from helpers.arm_lagrange import Arm, floor_angle, rates          # noqa: E402
 from helpers.two_link_arm_iwc import simulate                       # noqa: E402
-from one_step_table import header, row, timed_run                     # noqa: E402
+from one_step_table import REPEATS, header, row, timed_run                     # noqa: E402
 from painleve.fmu.experiment import Experiment                       # noqa: E402
 
 ARM_FMU = ROOT / "build" / "TwoLinkArm.fmu"
@@ -106,5 +108,88 @@ def arm_markdown(epsilons=EPSILONS):
     return lines + ["", WHERE_THE_TIME_GOES]
 
 
+# Equal accuracy, as bench/limit_compare.py measures the rod: the loosest rtol of bench.py's ladder
+# at which every case's w at the reference's return is within TARGET relative of w_ref.
+LADDER = tuple(10 ** (-k / 2) for k in range(6, 23))    # 1e-3 ... 1e-11
+TARGET = 1e-6
+
+
+def equal_accuracy(ex, eps, refs, ladder=LADDER, target=TARGET):
+    """(rtol, largest |w - w_ref| / |w_ref|) at the loosest rung within target; (None, None) if none is."""
+    for rtol in ladder:
+        errs = []
+        for (theta1, v0, delta), (t_ref, w_ref) in zip(CASES, refs):
+            _, w, _, contact = run_once(ex, start(theta1, v0, eps, delta)[2], rtol, t_ref)
+            errs.append(abs(w - w_ref) / abs(w_ref) if not contact else float("inf"))
+        if max(errs) <= target:
+            return rtol, max(errs)
+    return None, None
+
+
+def equal_accuracy_rows(ex, epsilons=EPSILONS, rounds=5):
+    """One dict per eps: rtol, err, us (median over cases of the median over rounds of
+    one_step_table's medians), us_max (the slowest case), fixed (the run without its step)."""
+    import statistics
+    out = []
+    for eps in epsilons:
+        refs = [reference(theta1, v0, eps, delta) for theta1, v0, delta in CASES]
+        rtol, err = equal_accuracy(ex, eps, refs)
+        r = dict(eps=eps, rtol=rtol, err=err)
+        if rtol is not None:
+            walls, fixed = [[] for _ in CASES], [[] for _ in CASES]
+            for _ in range(rounds):
+                for i, ((theta1, v0, delta), (t_ref, _)) in enumerate(zip(CASES, refs)):
+                    values = start(theta1, v0, eps, delta)[2]
+                    walls[i].append(statistics.median(run_once(ex, values, rtol, t_ref)[0] for _ in range(REPEATS)))
+                    fixed[i].append(statistics.median(run_once(ex, values, rtol, t_ref, step=False)[0]
+                                                      for _ in range(REPEATS)))
+            per_case = [1e6 * statistics.median(w) for w in walls]
+            r.update(us=statistics.median(per_case), us_max=max(per_case),
+                     fixed=1e6 * statistics.median(statistics.median(f) for f in fixed))
+        out.append(r)
+    return out
+
+
+def equal_accuracy_markdown(rows, load_before, load_after):
+    lines = [f"load average (1, 5, 15 min) before {', '.join(f'{x:.2f}' for x in load_before)}, after "
+             f"{', '.join(f'{x:.2f}' for x in load_after)}",
+             "", "| eps | FMU rtol | FMU us/case (slowest) | fixed us/run (fmpy's calls) | step us/case | "
+             "max rel. err w |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        if r["rtol"] is None:
+            lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | |")
+            continue
+        lines.append(f"| {r['eps']:.0e} | {r['rtol']:.2g} | {r['us']:.1f} ({r['us_max']:.1f}) | {r['fixed']:.1f} | "
+                     f"{r['us'] - r['fixed']:.1f} | {r['err']:.1e} |")
+    return lines
+
+
+def arm_equal_markdown(epsilons=EPSILONS, fmu=ARM_FMU):
+    """The section for docs/benchmarks.md (bench.py)."""
+    import os
+    before = os.getloadavg()
+    with Experiment(fmu, fmi_type="CoSimulation") as ex:
+        rows = equal_accuracy_rows(ex, epsilons)
+    return ["## The two-link arm at equal accuracy", "",
+            "TwoLinkArm's four cases (above) per eps at the loosest rtol of bench.py's ladder at which every "
+            "case's w at the numpy arm's return is within 1e-6 relative of it (the rod's criterion in the "
+            "speed limit's table), timed there: one fmi2DoStep per case from Python through fmpy (medians of "
+            f"{REPEATS} runs, median over 5 rounds, median over cases; the slowest case in brackets), the "
+            "same run without its step (fmpy's calls: reset, set-up, values, initialization, reads) and the "
+            "difference, the step's own cost, the figure that compares with the rod's us per case from C "
+            "(whose fixed cost is about 2 us). There is no single-purpose arm to give a ratio.", ""] + \
+        equal_accuracy_markdown(rows, before, os.getloadavg())
+
+
 if __name__ == "__main__":
-    print("\n".join(arm_markdown(tuple(float(e) for e in sys.argv[1:]) or EPSILONS)))
+    args = sys.argv[1:]
+    if args[:1] == ["--equal"]:
+        import os
+        fmu = args[2] if args[1:2] == ["--fmu"] else ARM_FMU
+        args = args[3:] if args[1:2] == ["--fmu"] else args[1:]
+        before = os.getloadavg()
+        with Experiment(fmu, fmi_type="CoSimulation") as ex:
+            rows = equal_accuracy_rows(ex, tuple(float(e) for e in args) or EPSILONS)
+        print("\n".join(equal_accuracy_markdown(rows, before, os.getloadavg())))
+    else:
+        print("\n".join(arm_markdown(tuple(float(e) for e in args) or EPSILONS)))

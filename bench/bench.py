@@ -240,8 +240,11 @@ def main(argv=None):
     rtols = {key: rtol for key, (rtol, _) in chosen.items()}
     equal = summarize(TUNABLE, measure(runners, TUNABLE, repeats, epsilons, rtols), ref, epsilons)
     runners.close()
-    from arm_table import arm_markdown
+    from arm_table import arm_equal_markdown, arm_markdown
+    from limit_compare import limit_markdown
+    from tolerance_table import tolerance_markdown
     cs = cs_markdown(cs_results(ref, epsilons, LADDER)) + [""] + si_markdown(epsilons) + [""] + arm_markdown(epsilons)
+    cs += [""] + limit_markdown(epsilons) + [""] + tolerance_markdown() + [""] + arm_equal_markdown(epsilons)
     peaks = {} if args.quick else peak_memory(names, epsilons)
     sweep = [] if args.quick else sweep_rows(args.sweep_cases)
     command = "python bench/bench.py" + (" " + " ".join(sys.argv[1:]) if len(sys.argv) > 1 else "")

@@ -24,3 +24,16 @@ def test_the_arm_in_one_do_step_lands_on_the_numpy_arm(arm_path, eps):
                 assert not contact and switches == 3
                 assert abs(w - w_ref) < 1e-6 * v0, (theta1, delta, rtol)
                 assert 0.05 < w_ref / v0 < 0.2         # an IWC: w of the order e v0, far from 0 and from v0
+
+
+def test_the_arm_at_its_equal_accuracy_rtol_is_within_1e_6_relative_of_the_numpy_arm(arm_path):
+    # bench/arm_table.py --equal picks, per eps, the loosest rtol of the ladder at which every case's w
+    # at the reference's return is within 1e-6 relative of the numpy arm; re-run there, each case is.
+    eps = 1e-3
+    refs = [arm_table.reference(theta1, v0, eps, delta) for theta1, v0, delta in arm_table.CASES]
+    with Experiment(arm_path, fmi_type="CoSimulation") as ex:
+        rtol, err = arm_table.equal_accuracy(ex, eps, refs)
+        assert rtol in arm_table.LADDER and err <= 1e-6
+        for (theta1, v0, delta), (t_ref, w_ref) in zip(arm_table.CASES, refs):
+            _, w, _, contact = arm_table.run_once(ex, arm_table.start(theta1, v0, eps, delta)[2], rtol, t_ref)
+            assert not contact and abs(w - w_ref) <= 1e-6 * abs(w_ref), (theta1, delta)
