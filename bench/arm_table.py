@@ -29,6 +29,7 @@ sys.path.insert(0, str(HERE))
 
 from helpers.arm_lagrange import Arm, floor_angle, rates          # noqa: E402
 from helpers.two_link_arm_iwc import simulate                       # noqa: E402
+from bench_runners import load_line                                       # noqa: E402
 from one_step_table import REPEATS, header, row, timed_run                     # noqa: E402
 from painleve.fmu.experiment import Experiment                       # noqa: E402
 
@@ -151,8 +152,7 @@ def equal_accuracy_rows(ex, epsilons=EPSILONS, rounds=5):
 
 
 def equal_accuracy_markdown(rows, load_before, load_after):
-    lines = [f"load average (1, 5, 15 min) before {', '.join(f'{x:.2f}' for x in load_before)}, after "
-             f"{', '.join(f'{x:.2f}' for x in load_after)}",
+    lines = [load_line(load_before, load_after),
              "", "| eps | FMU rtol | FMU us/case (slowest) | fixed us/run (fmpy's calls) | step us/case | "
              "max rel. err w |", "|---|---|---|---|---|---|"]
     for r in rows:

@@ -129,3 +129,9 @@ def timed(f, *args):
     t = time.perf_counter()
     out = f(*args)
     return time.perf_counter() - t, out
+
+
+def load_line(before, after):
+    """The machine's load averages (1, 5, 15 min) before and after a timed table, for its heading."""
+    return (f"load average (1, 5, 15 min) before {', '.join(f'{x:.2f}' for x in before)}, after "
+            f"{', '.join(f'{x:.2f}' for x in after)}")

@@ -32,7 +32,7 @@ import tempfile
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from bench_runners import EPSILONS, FMU, NATIVE_CS, ROOT, cases_at, run_native_cs  # noqa: E402
+from bench_runners import EPSILONS, FMU, NATIVE_CS, ROOT, cases_at, load_line, run_native_cs  # noqa: E402
 from native_driver import case_line  # noqa: E402
 from painleve.experiments import reference  # noqa: E402
 
@@ -150,8 +150,7 @@ def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT)
 
 
 def markdown(table, load_before, load_after, rounds):
-    lines = [f"load average (1, 5, 15 min) before {', '.join(f'{x:.2f}' for x in load_before)}, after "
-             f"{', '.join(f'{x:.2f}' for x in load_after)}; {rounds} interleaved rounds of {REPEAT} runs a case; "
+    lines = [f"{load_line(load_before, load_after)}; {rounds} interleaved rounds of {REPEAT} runs a case; "
              f"limit.c at rtol {LIMIT_RTOL:g}", "",
              "| eps | FMU rtol | FMU us/case (slowest) | limit.c us/case (slowest) | ratio | FMU max rel. err w "
              "| limit.c max rel. err w |", "|---|---|---|---|---|---|---|"]
