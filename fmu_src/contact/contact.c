@@ -264,11 +264,13 @@ const char *contact_indicator_name(ContactMode m, int i)
  * the surface in contact instead of chattering across it. */
 static bool in_contact(const ContactLaw *law, const BodyState *s, ContactSurfaces on)
 {
-    const double eps = law->epsilon, w = s->w, b = s->b;
-    const Compliance h = contact_compliance(law, s->y, w);
+    BodyState at = *s;   /* on a surface, at it */
+    if (on.gap || fabs(s->y) <= s->y_noise) at.y = 0;
+    if (on.still) at.w = 0;
+    const double eps = law->epsilon;
+    const Compliance h = contact_compliance(law, at.y, at.w);
     const double h0 = on.force || fabs(h.h) <= force_noise(law, s) ? 0.0 : h.h;   /* on F_N = 0: decided by h' */
-    const double y = on.gap || fabs(s->y) <= s->y_noise ? 0.0 : s->y;
-    return lex_sign(y, w, b) < 0 && lex_sign(h0, free_h_rate(&h, s, eps), h.h_yh * (b / eps)) > 0;
+    return lex_sign(at.y, at.w, at.b) < 0 && lex_sign(h0, free_h_rate(&h, &at, eps), h.h_yh * (at.b / eps)) > 0;
 }
 
 /* Slip direction at v = 0 in contact: stick inside the Filippov cone

@@ -140,6 +140,7 @@ void contact_indicator_noise(const Contact *c, ContactMode m, const double x[], 
 typedef struct {
     bool gap;   /* y = 0 */
     bool force; /* h = 0 (F_N = 0) */
+    bool still; /* w = 0 (a start given at rest on the floor) */
 } ContactSurfaces;
 
 /* The mode the rules of docs/model.md §2 give at state x, coming from mode m, with x on the

@@ -10,12 +10,26 @@ ContactRecord contact_record_new(void)
     return (ContactRecord){ .mode = { false, +1 }, .instant = -INFINITY };
 }
 
+/* A start given on the floor at rest carries its giver's rounding as well as ours (a body whose
+ * gap is no state: H from the angles, the rates from the tip's velocity, each rounded in SI and
+ * scaled): the start is on y = 0 at rest within this many times the rounding the body reports. */
+#define CONTACT_START_ROUNDING 8
+
+/* On y = 0 at rest, both or neither: on the floor with w of either sign, the moves off the
+ * surfaces (which turn w with the angles) would flip the decision round after round. */
+static ContactSurfaces start_surfaces(const BodyState *s)
+{
+    const bool at_rest = fabs(s->y) <= CONTACT_START_ROUNDING * s->y_noise &&
+                         fabs(s->w) <= CONTACT_START_ROUNDING * s->w_noise;
+    return (ContactSurfaces){ .gap = at_rest, .still = at_rest };
+}
+
 ContactMode contact_initial_mode(const Contact *c, double x[])
 {
     /* Slip follows the sign of v until the rules decide. */
-    const double v = contact_body(c, x).v;
+    const BodyState s = contact_body(c, x);
     bool changed;
-    return contact_decide_mode(c, (ContactMode){ false, (v > 0) - (v < 0) }, x, (ContactSurfaces){ 0 }, &changed);
+    return contact_decide_mode(c, (ContactMode){ false, (s.v > 0) - (s.v < 0) }, x, start_surfaces(&s), &changed);
 }
 
 void contact_record_start(ContactRecord *r, const Contact *c, double x[], double time)
@@ -135,18 +149,19 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
     const Instant instant = instant_at(c, x, time, time_unit);
     r->initial_event = false;
     const ContactMode before = r->mode;
-    const double v = contact_body(c, x).v;
-    if (floor_jumped && v != 0) r->mode.slip = v > 0 ? +1 : -1;
+    const BodyState at = contact_body(c, x);
+    if (floor_jumped && at.v != 0) r->mode.slip = at.v > 0 ? +1 : -1;
     /* An event that switched nothing, or another at the same instant (the chain of same_instant),
      * means the solver came straight back to a surface the state had been moved off: its error
      * exceeds the move.
      * Each such event moves twice as far, so the chatter ends where the motion goes on
      * (docs/bounded_calls.md); a physical IWC has at most 4 events at one instant. */
     const int again = r->returns + (same_instant(r, &instant, time) ? r->events_at_instant : 0);
-    /* The surfaces an integrator located (none at the initial event iteration, nor for an input).
-     * An integrator that came straight back to one is too coarse for the derivatives to decide
-     * there (a tolerance of 10): the signs decide again, as for any other state. */
-    const ContactSurfaces on = e->located && !initial && !floor_jumped && r->returns == 0
+    /* The surfaces the start sits on, or an integrator located (none for an input). An integrator
+     * that came straight back to one is too coarse for the derivatives to decide there (a
+     * tolerance of 10): the signs decide again, as for any other state. */
+    const ContactSurfaces on = initial ? start_surfaces(&at)
+                               : e->located && !floor_jumped && r->returns == 0
                                    ? contact_surfaces_of(c, before, x, crossed_since_restart(r, z),
                                                          instant.width / time_unit)
                                    : (ContactSurfaces){ 0 };

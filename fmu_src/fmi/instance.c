@@ -152,7 +152,6 @@ Status instance_event_update(Instance *in, const char *call, bool located, bool 
     if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);
     *states_changed = e.switched || e.states_changed;
-    in->event_switched = e.switched;
     in->fast_growth = e.fast_growth;
     return STATUS_OK;
 }

@@ -50,7 +50,6 @@ struct Instance {
     void *solver;                /* Co-Simulation's integrator, made on the first step */
     bool solver_live;            /* the solver holds this trajectory at `time`: a step continues it */
     bool solver_implicit;        /* CVODE, not the explicit pair, integrates (a sustained stiff phase) */
-    bool event_switched;         /* the last event update changed the mode */
     bool fast_growth;            /* the last event update's mode grows fast (model_event.h) */
     double last_successful_time;
     bool inputs_jumped;          /* an input changed since the last Co-Simulation step */
@@ -105,8 +104,7 @@ Model *instance_model(Instance *in);
 void instance_start(Instance *in);
 
 /* Co-Simulation after a located event: CVODE hands a mode whose fast motion grows back to the
- * explicit pair, and the pair hands a stiff phase that returned to a surface (an event that
- * switched nothing) to CVODE; otherwise the trajectory keeps its integrator. */
+ * explicit pair; otherwise the trajectory keeps its integrator. */
 void instance_choose_integrator(Instance *in);
 
 /* The event update at the instance's time, logged; `located`: a state event an integrator located. */

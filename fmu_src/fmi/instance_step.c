@@ -150,10 +150,6 @@ void instance_choose_integrator(Instance *in)
     if (in->solver_implicit && in->fast_growth) {   /* CVODE's large steps would damp the growth */
         instance_log_event(in, "t = %.17g: the contact's fast motion grows: the explicit pair integrates on", in->time);
         in->solver_implicit = false;
-    } else if (!in->solver_implicit && !in->event_switched && !in->fast_growth && s->erk.stiff_steps > 0) {
-        /* the pair's error, held at its stability bound, crossed a surface the motion does not */
-        instance_log_event(in, "t = %.17g: a stiff phase returned to a surface: CVODE integrates on", in->time);
-        in->solver_implicit = true;
     }
 }
 
