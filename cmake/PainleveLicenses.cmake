@@ -5,8 +5,9 @@ set(PAINLEVE_SUNDIALS_LICENSE "" CACHE FILEPATH
     "license text of the SUNDIALS the binaries link (empty: SUNDIALS_ROOT/LICENSE, or Debian's copyright file)")
 
 # Where the linked SUNDIALS came from, and its license text: SUNDIALS_ROOT's LICENSE and
-# ORIGIN (cmake/platforms.sh and run.sh write them beside the static build), or the
-# Debian package's copyright file for the system's SUNDIALS.
+# ORIGIN (cmake/platforms.sh and run.sh write them beside the static build), else the
+# LICENSE a SUNDIALS 7 install has in include/sundials/, or the Debian package's
+# copyright file for the system's SUNDIALS.
 function(painleve_sundials_license OUT_FILE OUT_ORIGIN)
   set(file "${PAINLEVE_SUNDIALS_LICENSE}")
   set(origin "${SUNDIALS_ROOT}")
@@ -16,6 +17,9 @@ function(painleve_sundials_license OUT_FILE OUT_ORIGIN)
       file(READ ${SUNDIALS_ROOT}/ORIGIN origin)
       string(STRIP "${origin}" origin)
     endif()
+  elseif(NOT file AND SUNDIALS_ROOT AND EXISTS ${SUNDIALS_ROOT}/include/sundials/LICENSE)
+    # SUNDIALS 7's own install puts its LICENSE beside its headers.
+    set(file ${SUNDIALS_ROOT}/include/sundials/LICENSE)
   elseif(NOT file AND NOT SUNDIALS_ROOT AND EXISTS /usr/share/doc/libsundials-dev/copyright)
     set(file /usr/share/doc/libsundials-dev/copyright)
     execute_process(COMMAND dpkg-query -W -f=\${Version} libsundials-dev OUTPUT_VARIABLE package
