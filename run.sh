@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The project's two entry points on a fresh Debian machine:
 #   bash run.sh main   set up, build PainleveRod.fmu, run the main job
-#   bash run.sh platforms  set up, build the FMUs for Linux, Windows and ARM into build/platforms/
+#   bash run.sh platforms  set up, build the FMUs for Linux, Windows, ARM and macOS into
+#                          build/platforms/, and the wheel for every platform into build/platforms/dist/
 #   bash run.sh test   set up, build, run every test
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -85,8 +86,9 @@ sundials_source() {
 }
 sundials7_setup() {
     local stamp="$SUNDIALS7/.from-sundials-sys-$SUNDIALS_SYS_VERSION"
-    [ -f "$stamp" ] && return
+    [ -f "$stamp" ] && [ -f "$SUNDIALS7/LICENSE" ] && return
     local work src
+    if [ -f "$stamp" ]; then sundials_license "$CVODE_SRC" "$SUNDIALS7"; return; fi
     log "SUNDIALS 7 from crates.io sundials-sys $SUNDIALS_SYS_VERSION into $SUNDIALS7 (once)"
     src=$(sundials_source)
     work=$(mktemp -d)
@@ -96,19 +98,38 @@ sundials7_setup() {
         -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_ENABLE_CXX=OFF -DEXAMPLES_INSTALL=OFF >"$work/build.log" 2>&1 &&
         cmake --build "$work/build" -j 2 >>"$work/build.log" 2>&1 && rm -rf "$SUNDIALS7" &&
         cmake --install "$work/build" >>"$work/build.log" 2>&1 || { tail -n 40 "$work/build.log" >&2; return 1; }
+    sundials_license "$src" "$SUNDIALS7"
     touch "$stamp"
     rm -rf "$work"
 }
+# What the FMUs' documentation/licenses/ says of a SUNDIALS built from SRC into PREFIX
+# (cmake/PainleveLicenses.cmake): its LICENSE, and where the sources came from.
+sundials_license() {
+    cp "$1/LICENSE" "$2/LICENSE"
+    printf 'the sources sundials-sys-%s/vendor holds\n' "$SUNDIALS_SYS_VERSION" >"$2/ORIGIN"
+}
 
 # The multi-platform FMUs (docs/platforms.md): cross compilers, wine and qemu from Debian 12
-# (pinned where Debian 12 has the version; the test runs every binary), then cmake/platforms.sh.
+# (pinned where Debian 12 has the version; the test runs every binary), llvm-14's lipo for the
+# universal macOS binary, zig (pinned, cmake/toolchains/requirements.txt) for macOS; then
+# cmake/platforms.sh, and the py3-none-any wheel that carries build/platforms/'s FMUs into
+# build/platforms/dist/ (its CMake build links the same SUNDIALS as build-platforms/x86_64-linux,
+# so the wheel's licenses are its FMUs').
 APT_PLATFORM_PACKAGES=(gcc-mingw-w64-x86-64=12.2.0-14+25.2 gcc-aarch64-linux-gnu=4:12.2.0-3
-                       libc6-dev-arm64-cross=2.36-8cross1 wine64=8.0~repack-4 qemu-user)
+                       libc6-dev-arm64-cross=2.36-8cross1 wine64=8.0~repack-4 qemu-user llvm-14=1:14.0.6-12)
 platforms() {
     apt_install "${APT_PLATFORM_PACKAGES[@]}"
-    local src
-    src=$(sundials_source)
-    bash cmake/platforms.sh "$PY" "$src"
+    log "pip install (pinned, cmake/toolchains/requirements.txt)"
+    "$PY" -m pip install -q --disable-pip-version-check -r cmake/toolchains/requirements.txt
+    bash cmake/platforms.sh "$PY" "$CVODE_SRC"
+    log "the py3-none-any wheel with build/platforms/'s FMUs into build/platforms/dist"
+    rm -rf build/platforms/dist
+    "$PY" -m pip wheel -q --disable-pip-version-check --no-deps --no-build-isolation -w build/platforms/dist \
+        -C wheel.platlib=false -C build-dir=build/pip/any \
+        -C cmake.define.PAINLEVE_WHEEL_FMUS="$ROOT/build/platforms" \
+        -C cmake.define.SUNDIALS_ROOT="$ROOT/.tools/platforms/x86_64-linux/sundials" \
+        -C cmake.define.PAINLEVE_CVODE_SOURCE_DIR="$CVODE_SRC" . >/dev/null
+    log "built $(ls "$ROOT"/build/platforms/dist/*.whl)"
 }
 
 # More test-only importers (tests/helpers/other_importers.py): libcosim and ecos from PyPI
@@ -128,13 +149,15 @@ more_importers_setup() {
 
 # The harness is installed the way a Python user installs it (pyproject.toml: scikit-build-core
 # runs CMake and bundles PainleveRod.fmu in the package), here editable and with the pinned
-# build requirements of requirements.txt already in the venv.
+# build requirements of requirements.txt already in the venv. Its FMUs carry the CVODE subset
+# of the pinned SUNDIALS in sources/ (cmake/PainleveCvodeSources.cmake), as the plain build's do.
 python_setup() {
     [ -x "$PY" ] || { log "creating $VENV"; python3 -m venv "$VENV"; }
     log "pip install (pinned, requirements.txt)"
     "$PY" -m pip install -q --disable-pip-version-check -r requirements.txt
     log "pip install -e . (builds the FMU into the package)"
-    "$PY" -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
+    SKBUILD_CMAKE_DEFINE="PAINLEVE_CVODE_SOURCE_DIR=$CVODE_SRC" \
+        "$PY" -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
 }
 
 # The test tools of the Python side (pytest), for `bash run.sh test` only.
@@ -145,12 +168,15 @@ test_python_setup() {
 
 build_fmu() {
     log "building the FMUs (PainleveRod FMI 2.0 and 3.0, PainleveRodSI, ShakerTable)"
-    cmake -S . -B build -DPython3_EXECUTABLE="$PY" -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake -S . -B build -DPython3_EXECUTABLE="$PY" -DCMAKE_BUILD_TYPE=Release \
+        -DPAINLEVE_CVODE_SOURCE_DIR="$CVODE_SRC" >/dev/null
     cmake --build build -j 2 >/dev/null
     log "built $ROOT/build/*.fmu"
 }
 
-setup() { apt_install "${APT_PACKAGES[@]}"; python_setup; build_fmu; }
+# The pinned SUNDIALS sources (sundials_source) go into every FMU's sources/, so that each
+# builds Co-Simulation with no SUNDIALS installed; the binaries of build/ link Debian's.
+setup() { apt_install "${APT_PACKAGES[@]}"; CVODE_SRC=$(sundials_source); python_setup; build_fmu; }
 
 case "${1:-}" in
     main) setup; rc=0

@@ -12,11 +12,15 @@
 # cvode_bundled.h, which defines HAVE_CVODE where cvode_build.h finds it.
 set(PAINLEVE_CVODE_SOURCE_DIR "" CACHE PATH "pinned SUNDIALS 7 sources to put in the source FMUs (empty: none)")
 
-# CVODE_BUNDLE_DIR (the folder to copy into sources/) and CVODE_BUNDLE_SOURCES
-# (its .c files, relative to sources/); both empty without PAINLEVE_CVODE_SOURCE_DIR.
+# CVODE_BUNDLE_DIR (the folder to copy into sources/), CVODE_BUNDLE_SOURCES (its .c
+# files, relative to sources/), CVODE_BUNDLE_VERSION and CVODE_BUNDLE_ORIGIN (the
+# SUNDIALS release, and the folder it came from named by its parent: sundials-sys-0.6.2/vendor);
+# all empty without PAINLEVE_CVODE_SOURCE_DIR.
 function(painleve_cvode_bundle)
   set(CVODE_BUNDLE_DIR "" PARENT_SCOPE)
   set(CVODE_BUNDLE_SOURCES "" PARENT_SCOPE)
+  set(CVODE_BUNDLE_VERSION "" PARENT_SCOPE)
+  set(CVODE_BUNDLE_ORIGIN "" PARENT_SCOPE)
   set(src ${PAINLEVE_CVODE_SOURCE_DIR})
   if(NOT src)
     return()
@@ -81,8 +85,13 @@ function(painleve_cvode_bundle)
   file(WRITE ${out}/cvode_bundled.h
     "/* Written by cmake/PainleveCvodeSources.cmake: this source FMU carries CVODE (sundials_src/). */\n"
     "#ifndef HAVE_CVODE\n#define HAVE_CVODE 1\n#endif\n")
+  get_filename_component(parent ${src} DIRECTORY)
+  get_filename_component(parent ${parent} NAME)
+  get_filename_component(folder ${src} NAME)
   set(CVODE_BUNDLE_DIR ${out} PARENT_SCOPE)
   set(CVODE_BUNDLE_SOURCES ${names} PARENT_SCOPE)
+  set(CVODE_BUNDLE_VERSION ${version} PARENT_SCOPE)
+  set(CVODE_BUNDLE_ORIGIN "the sources ${parent}/${folder} holds" PARENT_SCOPE)
 endfunction()
 
 # TEXT (an FMI 2.0 model description) with CVODE_BUNDLE_SOURCES added to each of

@@ -53,6 +53,14 @@ function(painleve_platform_target TARGET)
       target_link_options(${TARGET} PRIVATE -Wl,--wrap=pow)
     endif()
   endif()
+  # macOS (zig's clang, cmake/toolchains/*-macos.cmake): clang warns where GCC does not, about
+  # fmpy's fmi3FunctionTypes.h (two declarations without prototypes) and about an enum
+  # constant (a count) in double arithmetic, which converts as C says.
+  # The library's install name is @rpath/NAME.dylib, not the build folder's path.
+  if(APPLE)
+    target_compile_options(${TARGET} PRIVATE -Wno-strict-prototypes -Wno-enum-float-conversion)
+    set_target_properties(${TARGET} PROPERTIES INSTALL_NAME_DIR "@rpath" BUILD_WITH_INSTALL_NAME_DIR ON)
+  endif()
   if(WIN32)
     target_link_options(${TARGET} PRIVATE -static-libgcc)
     # mingw-w64's isfinite (math.h) is a __builtin_choose_expr over __fpclassify,

@@ -2,7 +2,10 @@
 description (the variables', units' and experiment's one home), so that the page
 and the model cannot disagree. Both FMUs (FMI 2.0 and 3.0) carry it.
 
-    python3 fmu_documentation.py MODEL_DESCRIPTION_XML OUT_DIR
+    python3 fmu_documentation.py MODEL_DESCRIPTION_XML OUT_DIR [LICENSES_DIR]
+
+LICENSES_DIR: the folder the FMU carries as documentation/licenses/ (cmake/fmu_licenses.py),
+whose files the page links, its license.txt first.
 """
 import html
 import sys
@@ -44,7 +47,18 @@ def table(header, rows):
     return f"<table>\n<tr>{cells}</tr>\n{body}\n</table>"
 
 
-def page(md):
+def licenses_section(licenses):
+    """The licenses' links: license.txt (what each file covers) first, then the files."""
+    if licenses is None:
+        return ""
+    names = ["license.txt"] + sorted(p.name for p in licenses.iterdir() if p.name != "license.txt")
+    items = "\n".join(f'<li><a href="licenses/{html.escape(n)}">{html.escape(n)}</a></li>' for n in names)
+    return ("<h2>Licenses</h2>\n<p>The FMU is BSD-2-Clause licensed; it contains SUNDIALS CVODE (BSD-3-Clause) "
+            "and is compiled with the FMI headers (BSD-2-Clause). license.txt says which file covers what, "
+            f"and which versions:</p>\n<ul>\n{items}\n</ul>\n")
+
+
+def page(md, licenses=None):
     units = []
     for unit in children(md, "UnitDefinitions"):
         base = unit.find("BaseUnit")
@@ -79,7 +93,7 @@ table{{border-collapse:collapse}}</style></head>
 <h2>Variables</h2>
 {table(("name", "causality", "variability", "type", "unit", "start", "min", "max", "description"),
        variable_rows(md))}
-<p>Made from modelDescription.xml when the FMU was built{equations}</p>
+{licenses_section(licenses)}<p>Made from modelDescription.xml when the FMU was built{equations}</p>
 </body>
 </html>
 """
@@ -89,7 +103,8 @@ def main():
     md = ET.parse(sys.argv[1]).getroot()
     out = Path(sys.argv[2])
     out.mkdir(parents=True, exist_ok=True)
-    (out / "index.html").write_text(page(md), encoding="utf-8")
+    licenses = Path(sys.argv[3]) if len(sys.argv) > 3 else None
+    (out / "index.html").write_text(page(md, licenses), encoding="utf-8")
 
 
 if __name__ == "__main__":

@@ -76,7 +76,7 @@ def test_a_tool_builds_the_source_fmu_from_its_source_files(table_path, tmp_path
     """<SourceFiles> and sources/ are complete: fmpy compiles them (with the README's CVODE
     options) into a binary that simulates like the CMake build."""
     from helpers.source_build import source_build, with_cvode
-    unzipped = source_build(table_path, tmp_path, with_cvode())
+    unzipped = source_build(table_path, tmp_path, with_cvode(), bundled=False)
     a, b = (simulate_fmu(f, fmi_type=fmi_type, start_values=dict(F_N=30.0), output=["position", "velocity"])
             for f in (table_path, unzipped))
     for name in ("position", "velocity"):

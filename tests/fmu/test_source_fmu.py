@@ -1,6 +1,9 @@
 """The source FMU as a tool builds it: every source in sources/ and in <SourceFiles>,
 fmpy's own build of it (with and without CVODE), and the sources linked statically
-twice into one program under two FMI2_FUNCTION_PREFIXes."""
+twice into one program under two FMI2_FUNCTION_PREFIXes. The FMU carries the CVODE
+subset of the pinned SUNDIALS (sundials_src/, tests/platforms/test_source_fmu_cvode.py
+builds Co-Simulation from it); the builds here take it out first, as an FMU built
+without the pinned sources has it (helpers.source_build.without_bundle)."""
 import pathlib
 import re
 import subprocess
@@ -35,15 +38,20 @@ def test_source_files_are_every_source_for_both_interfaces(fmu_path):
     with zipfile.ZipFile(fmu_path) as z:
         md = ElementTree.fromstring(z.read("modelDescription.xml"))
         me, cs = ([f.get("name") for f in md.findall(f"{i}/SourceFiles/File")] for i in ("ModelExchange", "CoSimulation"))
-        assert me == cs and set(me) == {p.name for p in fmi2_files("*.c")}
-        shipped = {pathlib.PurePosixPath(n).name for n in z.namelist() if n.startswith("sources/") and not n.endswith("/")}
+        own = [n for n in me if not n.startswith("sundials_src/")]
+        assert me == cs and set(own) == {p.name for p in fmi2_files("*.c")}
+        # Beside the model's own files (flat), only the CVODE subset: its sources in <SourceFiles>.
+        files = [n[len("sources/"):] for n in z.namelist() if n.startswith("sources/") and not n.endswith("/")]
+        flat = {n for n in files if "/" not in n} - {"cvode_bundled.h"}
+        bundled_c = {n for n in files if n.startswith("sundials_src/") and n.endswith(".c")}
     headers = {p.name for p in fmi2_files("*.h")} | {"model_description.h", "model_dependencies.h"}
-    assert shipped == set(me) | headers
+    assert flat == set(own) | headers
+    assert bundled_c == set(me) - set(own) and "sundials_src/cvode.c" in bundled_c
 
 
 @pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
 def test_fmpy_compile_with_cvode_matches_the_cmake_build(fmu_path, tmp_path, fmi_type):
-    unzipped = source_build(fmu_path, tmp_path, with_cvode())
+    unzipped = source_build(fmu_path, tmp_path, with_cvode(), bundled=False)
     a, b = default_experiment(fmu_path, fmi_type), default_experiment(unzipped, fmi_type)
     assert b["w"][-1] > 0 and b["contact"].any()
     for name in ("y", "w", "v", "phi", "energy"):
@@ -51,7 +59,7 @@ def test_fmpy_compile_with_cvode_matches_the_cmake_build(fmu_path, tmp_path, fmi
 
 
 def test_fmpy_compile_without_cvode_runs_model_exchange_and_says_why_cosimulation_cannot(fmu_path, tmp_path):
-    unzipped = source_build(fmu_path, tmp_path)
+    unzipped = source_build(fmu_path, tmp_path, bundled=False)
     assert default_experiment(unzipped, "ModelExchange")["w"][-1] > 0
     messages = []
     with pytest.raises(Exception):

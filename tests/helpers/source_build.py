@@ -23,13 +23,30 @@ def with_cvode():
     return {"CMAKE_C_FLAGS": "-DHAVE_CVODE", "CMAKE_C_STANDARD_LIBRARIES": " ".join(sundials_libraries() + ["-lm"])}
 
 
-def source_build(fmu_path, where, cmake_options=None):
-    """The FMU's sources extracted into where/fmu, its binaries removed and built anew in where/build."""
+def source_build(fmu_path, where, cmake_options=None, bundled=True):
+    """The FMU's sources extracted into where/fmu, its binaries removed and built anew in where/build.
+    bundled=False first takes the CVODE subset out of sources/ and <SourceFiles> (without_bundle):
+    the FMU a build without the pinned SUNDIALS sources makes, whose importer links a SUNDIALS."""
     unzipped = fmpy.extract(fmu_path, where / "fmu")
     shutil.rmtree(where / "fmu" / "binaries")
+    if not bundled:
+        without_bundle(pathlib.Path(unzipped))
     (where / "build").mkdir()
     build_platform_binary(unzipped, build_dir=where / "build", cmake_options=cmake_options)
     return unzipped
+
+
+def without_bundle(unzipped):
+    """An extracted FMU less its CVODE subset (cmake/PainleveCvodeSources.cmake): sources/'s
+    SUNDIALS folders, sundials_src/ and cvode_bundled.h, and their files in the model
+    description (FMI 2.0 <SourceFiles>, FMI 3.0 buildDescription.xml)."""
+    sources = unzipped / "sources"
+    for entry in sources.iterdir():
+        if entry.name in SUNDIALS_HEADERS or entry.name in ("sundials_src", "cvode_bundled.h"):
+            shutil.rmtree(entry) if entry.is_dir() else entry.unlink()
+    for xml in (unzipped / "modelDescription.xml", sources / "buildDescription.xml"):
+        if xml.exists():
+            xml.write_text(re.sub(r'[ \t]*<(?:File|SourceFile) name="sundials_src/[^"]+"\s*/>\n', "", xml.read_text()))
 
 
 # What Debian's libsundials-dev puts in /usr/include (SUNDIALS 6), and the folders of any other.

@@ -21,8 +21,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = ROOT / "build" / "platforms"
 sys.path.insert(0, str(ROOT / "bench"))
 
-FMI2_FOLDERS = {"linux64", "win64"}
-FMI3_FOLDERS = {"x86_64-linux", "x86_64-windows", "aarch64-linux"}
+FMI2_FOLDERS = {"linux64", "win64", "darwin64"}
+FMI3_FOLDERS = {"x86_64-linux", "x86_64-windows", "aarch64-linux", "x86_64-darwin", "aarch64-darwin"}
 RTOL = 1e-12
 
 
@@ -43,12 +43,13 @@ def test_every_model_of_the_build_has_a_multi_platform_fmu():
 
 @pytest.mark.parametrize("fmu", FMUS)
 def test_every_platform_is_in_the_fmu(fmu):
-    """fmpy (0.3.32) lists linux64 and win64 for both versions; it knows no aarch64-linux, so
-    the FMI 3.0 archive is read for that folder (docs/platforms.md)."""
-    assert set(supported_platforms(str(PLATFORMS / fmu))) >= {"c-code", "linux64", "win64"}
+    """fmpy (0.3.32) lists linux64, win64 and darwin64 for both versions; it knows no
+    aarch64-linux or aarch64-darwin, so the FMI 3.0 archive is read for those folders
+    (docs/platforms.md)."""
+    assert set(supported_platforms(str(PLATFORMS / fmu))) >= {"c-code", "linux64", "win64", "darwin64"}
     with zipfile.ZipFile(PLATFORMS / fmu) as z:
         folders = {pathlib.PurePosixPath(n).parent.name for n in z.namelist()
-                   if n.startswith("binaries/") and n.endswith((".so", ".dll"))}
+                   if n.startswith("binaries/") and n.endswith((".so", ".dll", ".dylib"))}
     assert folders == (FMI3_FOLDERS if fmu.startswith("fmi3/") else FMI2_FOLDERS)
 
 
