@@ -293,8 +293,8 @@ REPLAYS = json.loads((pathlib.Path(__file__).parent / "data" / "switch_cases.jso
 def test_the_recorded_runs_that_ended_in_cvode_errors_return_ok_at_every_step(unpacked, case, fmi):
     """Random legal Co-Simulation runs with irregular communication steps that ended in CVode (-22)
     at a step's end (PainleveRod FMI 2.0, TwoLinkArm FMI 3.0, PainleveRodSI FMI 3.0): the three
-    "solver_error" cases of the project's shared reproduction file, shared/repro/cases.json (issue
-    "Every integrator switch completes"), copied as they were into data/switch_cases.json. Each case
+    "solver_error" cases of the workplace's shared reproduction file (the repro folder's cases.json,
+    beside the repository), copied as they were into data/switch_cases.json. Each case
     runs in the FMI version it was recorded in and in the other (both share the integrators): its
     start values, tolerance and start time, then its steps as a master adds them up."""
     s = Slave(unpacked, fmu_file(case["model"] + ".fmu", fmi), case["tolerance"], case["start_time"],

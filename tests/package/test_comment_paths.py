@@ -6,7 +6,8 @@ from Python comments and docstrings, C comments and the `#` comments of CMake an
 exists relative to the repository's root, the commenting file's folder or one of that folder's
 parents (C sources name headers from fmu_src/, as the compiler finds them); a glob must match a
 file. Not checked: what the build or the main job makes (build/, out/), what lives inside an FMU
-archive (documentation/, binaries/, resources/, sources/) or the SUNDIALS tree (sundials/), and
+archive (documentation/, binaries/, resources/, sources/, terminalsAndIcons/), the SUNDIALS tree
+(sundials/) or Apple's SDK (mach-o/), and
 placeholders (a part in capitals such as NAME or OUT_DIR, an elided `...`)."""
 import ast
 import io
@@ -19,7 +20,8 @@ from conftest import ROOT
 
 SCANNED = ("fmu_src", "python_harness", "cmake", "bench", "tests")
 NO_ISSUE_NUMBERS = ("fmu_src", "python_harness", "cmake", "CMakeLists.txt")
-NOT_IN_THE_TREE = ("build/", "out/", "documentation/", "binaries/", "resources/", "sources/", "sundials/")
+NOT_IN_THE_TREE = ("build/", "out/", "documentation/", "binaries/", "resources/", "sources/", "sundials/",
+                   "terminalsAndIcons/", "mach-o/")
 SKIPPED_FOLDERS = {".venv", "__pycache__", "target", ".tools"}
 
 PATH = re.compile(r"(?<![\w./:~$-])((?:\.{1,2}/)?[\w.*-]+(?:/[\w.*-]+)+\.[A-Za-z]{1,5})(?![\w/])")
