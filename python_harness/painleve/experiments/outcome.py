@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What one IWC case did, and the one definition of its phases.
 
 Every way of running a case (Model Exchange, Co-Simulation, a recorded
