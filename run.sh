@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The project's two entry points on a fresh Debian machine:
 #   bash run.sh main   set up, build PainleveRod.fmu, run the main job
 #   bash run.sh platforms  set up, build the FMUs for Linux, Windows, ARM and macOS into

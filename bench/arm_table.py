@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The two-link arm's Co-Simulation table (issue #28: "the two-link arm ... gets the same
 table"): TwoLinkArm (fmu_src/models/TwoLinkArm) as the tests' arm (tests/helpers/arm_lagrange:
 H = 0.3, links of 0.5 and masses 0.5, L = M = g = 1, mu = 1.5), its tip on the floor moving

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What an IWC case costs, and how the cost grows as eps -> 0: every way we have
 of running one, side by side in one process run, interleaved.
 

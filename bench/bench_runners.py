@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The benchmark's cases and its runners (bench/bench.py measures and compares them):
 every way we have of running an IWC case, as name -> f(case, rtol), instances made
 once; see bench.py's docstring for what each runner is.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Benchmark of bounded calls: the random legal cases of tests/fmu/test_bounded_calls.py
 (bench/bounded_cases.py), a few thousand by default, and a table per model x FMI
 version x interface (Model Exchange per solver): cases, hangs, crashes, Zeno

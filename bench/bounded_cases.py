@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Random legal cases of every built FMU (model x FMI version x interface), each run
 in a worker child process under a wall limit: the machinery of
 tests/fmu/test_bounded_calls.py (every call returns) and bench/bounded_calls.py (its

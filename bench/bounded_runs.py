@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Cases of bench/bounded_cases.py run in sequence in worker child processes under a
 wall limit: the parent (run_cases) starts a worker, hears "start K" and "end K {json}"
 from it on a pipe, and kills it past the wall limit; the worker (`python

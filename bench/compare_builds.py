@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Did the physics move? Runs the benchmark's IWC cases (bench.py's cases_at,
 eps = 1e-2 ... 1e-6) through two builds of PainleveRod.fmu, Model Exchange and
 Co-Simulation, and prints w, phi, v at the return side by side with their

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The convergence study of docs/coupling.md (issue #25): the coupled rod on the shaker table with
 both couplings (the step means, the instantaneous forces), in each master.
 

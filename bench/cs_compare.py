@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Two builds of PainleveRod.fmu side by side in one run: each benchmark case through one
 fmi2DoStep from C (bench/native's painleve_native_cs, as cs_table.py) at the FMU's default
 tolerance, the builds interleaved eps by eps for ROUNDS rounds (the fastest round kept), so

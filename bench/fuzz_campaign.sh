@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # A long fuzzing campaign off CI: each fuzz target of tests/c for a time budget,
 # in libFuzzer's fork mode (one job at a time: -fork=1; a crash, timeout or OOM
 # is kept and the campaign goes on), over a scratch copy of tests/c/corpus, then

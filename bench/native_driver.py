@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Runs IWC cases through the native Model Exchange driver (bench/native:
 painleve_native_me, the FMU under SUNDIALS CVODE with no Python in the loop)
 and reads its TSV back.

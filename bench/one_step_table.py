@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What the one-doStep-per-case tables (si_table.py, arm_table.py) share: a run timed from
 fmi2Reset to its last read, and a table row from the repeated runs of a tolerance's cases."""
 import statistics

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's sweep, timed side by side: N random Theorem 1 cases through
 Co-Simulation (the harness's fastest path), by main's path before issue #28's
 plan (main's own code, MAIN_COMMIT's python_harness, with the FMU built here: a local

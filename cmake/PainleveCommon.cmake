@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # What every build of PainleveRod's sources needs, in one place: the FMI 2.0
 # headers of the installed fmpy, the header made from modelDescription.xml
 # (the GUID's one home), and static SUNDIALS CVODE (Debian's, or SUNDIALS_ROOT's) if it is there.

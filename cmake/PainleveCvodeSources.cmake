@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # The CVODE subset a source FMU carries, so that an importer's own
 # compiler (fmpy's build_platform_binary, OpenModelica's importFMU with sources)
 # builds a Co-Simulation binary with no SUNDIALS installed: from the pinned

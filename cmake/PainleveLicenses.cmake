@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # The licenses every FMU of the build carries in documentation/licenses/
 # (cmake/fmu_licenses.py): the project's, the SUNDIALS the binaries link, the
 # SUNDIALS subset in sources/ (cmake/PainleveCvodeSources.cmake), the FMI headers'.

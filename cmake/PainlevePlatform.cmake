@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # The target platform of a build (native or cross, cmake/toolchains/): its FMI
 # folder names, and what every binary built for it needs so that all platforms
 # give the same numbers and load on a bare system (docs/platforms.md).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMI 3.0 model description of a model (PainleveRod, PainleveRodSI, ShakerTable),
 made from its FMI 2.0 one (the variables', units', experiment's and dependencies' one
 home) at build time, and the FMI 3.0 source FMU's buildDescription.xml.

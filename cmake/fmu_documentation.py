@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU's documentation/index.html, made at build time from the FMI 2.0 model
 description (the variables', units' and experiment's one home), so that the page
 and the model cannot disagree. Both FMUs (FMI 2.0 and 3.0) carry it.

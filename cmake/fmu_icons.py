@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMUs' icons, one drawing per model: the rod leaning on the rough floor (PainleveRod,
 PainleveRodSI), the two-link arm whose tip drags on the floor (TwoLinkArm), the shaker table
 on its spring (ShakerTable). Written as fmu_src/models/NAME/icon.png (256 x 256 pixels),

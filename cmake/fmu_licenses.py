@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """documentation/licenses/ of every FMU a build makes: the project's license, the
 license of the SUNDIALS the binaries link and of the SUNDIALS the sources carry
 (each copied from where that SUNDIALS came from), and the FMI headers' (the

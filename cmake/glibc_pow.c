@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Linked into the Linux FMUs by cmake/PainlevePlatform.cmake (not an FMU source):
  * every call of pow in the link (CVODE's, -Wl,--wrap=pow) goes to glibc's
  * oldest pow symbol instead of pow@GLIBC_2.29, so that glibc 2.17 (aarch64)

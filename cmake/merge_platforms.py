@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The multi-platform FMUs: every FMU of the first build folder (NAME.fmu, and
 fmi3/NAME.fmu: whatever models the build has), with the binaries/ of the FMU at
 the same place in each further build folder added, written under OUT.

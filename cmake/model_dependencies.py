@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """model_dependencies.h from a model description's <ModelStructure>: the one home of which
 unknown depends on which known. A model whose partial derivatives come from a chain rule
 (fmu_src/models/PainleveRodSI) answers exactly 0 for every pair not declared here, where the chain

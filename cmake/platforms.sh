@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-2-Clause
 # The multi-platform FMUs (docs/platforms.md): run by `bash run.sh platforms`,
 # which installs the cross compilers and fetches the pinned SUNDIALS first.
 #   cmake/platforms.sh PYTHON SUNDIALS_SOURCE_DIR

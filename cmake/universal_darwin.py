@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """FMI 2.0's darwin64 folder holds one binary for every Mac: OUT gets each FMU of the
 x86_64-darwin build (NAME.fmu, fmi3/NAME.fmu), the FMI 2.0 ones with, in place of their
 x86_64 binaries/darwin64/NAME.dylib, the universal binary of that library and the

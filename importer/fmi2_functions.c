@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* See fmi2_functions.h. */
 #include "fmi2_functions.h"
 

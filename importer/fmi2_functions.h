@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The fmi2* functions of an FMU's shared library, looked up as an importer does
  * (dlopen, dlsym): the one C loader of the tests' driver and fuzz target
  * (tests/c) and the benchmark's native driver (bench/native). */

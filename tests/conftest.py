@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Fixtures shared by the FMU tests: the built FMU, found where run.sh builds it; and the
 temporary directory of the whole session, checked at its end for what the harness left."""
 import os

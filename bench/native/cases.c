@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The cases of stdin and their horizons (cases.h). */
 #include "cases.h"
 

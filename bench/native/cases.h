@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The cases the native driver runs, one a line of stdin, "theta0 phi0 v0
  * delta epsilon w10 alpha mu", and what a case implies for a run: its horizon. */
 #ifndef CASES_H

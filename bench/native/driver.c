@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The native driver's runs (driver.h): the FMU's set-up, CVODE's view of it,
  * and one case from fmi2Reset to fmi2Terminate. */
 #include "driver.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* One instance of the PainleveRod FMU under FMI 2.0 Model Exchange, integrated
  * case by case by SUNDIALS CVODE set up as fmpy's CVodeSolver (native_me.c). */
 #ifndef DRIVER_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* See fmu_import.h. modelDescription.xml is read by a small scanner that
  * knows the few elements it needs (comments blanked, quoted attribute values
  * skipped), not by a general XML parser. */

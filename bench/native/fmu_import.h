@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Loading an FMI 2.0 Model Exchange FMU as an importer does: the facts the
  * driver needs from modelDescription.xml (GUID, model identifier, value
  * references by name, states and derivatives in state order, the number of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Wall time and peak memory of the native driver (measure.h). */
 #include "measure.h"
 

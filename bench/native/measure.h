@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the native driver measures beyond the run: wall time and peak memory. */
 #ifndef MEASURE_H
 #define MEASURE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* painleve_native_cs: an IWC case through the PainleveRod FMU's own
  * Co-Simulation from C, one fmi2DoStep over the whole case -- what a case
  * costs where no master's work is in the loop.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The native driver's one way to fail: a message naming what to fix, written
  * to err (n bytes), and 0 returned (every function that can fail takes err, n). */
 #ifndef NATIVE_FAIL_H

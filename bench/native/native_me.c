@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* painleve_native_me: the PainleveRod FMU integrated as FMI 2.0 Model
  * Exchange by SUNDIALS CVODE with no Python in the loop -- the measured lower
  * limit of what an importer pays per impact-without-collision run.

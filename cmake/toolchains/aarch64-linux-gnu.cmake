@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Cross-build for 64-bit ARM Linux with Debian's gcc-aarch64-linux-gnu and the
 # sysroot of libc6-dev-arm64-cross (/usr/aarch64-linux-gnu). FMI 3.0 folder
 # aarch64-linux; FMI 2.0 has none (docs/platforms.md).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Cross-build for macOS on x86_64 with zig's clang and Mach-O linker (PyPI ziglang,
 # pinned in cmake/toolchains/requirements.txt), through the wrappers cmake/platforms.sh
 # writes into .tools/zig/. FMI 3.0 folder x86_64-darwin; the FMI 2.0 folder darwin64

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 # Cross-build for 64-bit Windows with Debian's gcc-mingw-w64-x86-64 (GCC 12, the
 # win32 thread model: the DLL then needs no libwinpthread). FMI 2.0 folder win64,
 # FMI 3.0 x86_64-windows (cmake/PainlevePlatform.cmake names them from this).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The contact core over a body (contact.h): forces, the right-hand side of each
  * mode, event indicators and the mode decision.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The contact core: a compliant unilateral contact with Coulomb friction at one
  * point of a rigid body, written once over a body description (docs/general_body.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The contact core's event update (contact.h): the mode decision iterated to a
  * fixpoint, and the move of the state off every switching surface it sits on, so
  * that no importer restarts integration on a root. Over any body. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The event iteration of a model on the contact core: see contact_record.h. */
 #include "contact_record.h"
 

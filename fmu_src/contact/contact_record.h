@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The event iteration of a model built on the contact core (contact.c), shared by every
  * such model (PainleveRod, PainleveRodSI, TwoLinkArm): the mode, the record of its switches,
  * the indicators where integration last restarted, and the Zeno guard. The

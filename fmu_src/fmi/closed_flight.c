@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation's flight in closed form (explicit_rk.h): where the model knows its free
  * flight exactly (model.h's MODEL_CLOSED_FLIGHT: a rigid body under gravity and constant
  * loads), a flight is evaluated, not integrated. It has no step error, so the velocity a

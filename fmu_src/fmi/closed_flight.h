@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation's flight in closed form (closed_flight.c), beside the explicit pair whose
  * state, stops and root finding it shares (explicit_rk.h). */
 #ifndef CLOSED_FLIGHT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* CVODE over the model (see cosim.h), SUNDIALS 6 or 7 (sundials_compat.h).
  * Without HAVE_CVODE (SUNDIALS not linked) this file is empty and
  * Co-Simulation steps say so. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation's implicit integrator: SUNDIALS CVODE (Adams, Newton with a
  * dense linear solver and the rod's analytic Jacobian, root finding on the
  * rod's event indicators) over the model of model.h, for what the explicit

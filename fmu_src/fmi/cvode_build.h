@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* HAVE_CVODE: whether Co-Simulation has CVODE. The CMake build defines it when
  * it links SUNDIALS. A source FMU that carries the CVODE sources (sources/
  * sundials_src/, cmake/PainleveCvodeSources.cmake) also has cvode_bundled.h,

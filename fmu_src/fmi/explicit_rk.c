@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The Dormand-Prince 5(4) pair over the model (explicit_rk.h). Coefficients
  * from J. R. Dormand and P. J. Prince, "A family of embedded Runge-Kutta
  * formulae", J. Comput. Appl. Math. 6 (1980) 19-26; the continuous extension

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation's fast integrator: the explicit embedded Runge-Kutta pair of
  * Dormand and Prince, 5(4), with its continuous extension (dense output),
  * over the model of model.h. Between events a body in flight or in a short

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 calls common to Model Exchange and Co-Simulation, on the instance
  * of instance.h.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 Co-Simulation: fmi2DoStep integrates the model with the embedded
  * CVODE (instance_step) and runs the same event update as Model
  * Exchange at every event inside a step, unseen by the master. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 2.0 files share: the instance (instance.h) with the
  * importer's callbacks, the call guards. The model is reached only through
  * instance.h and model.h. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 Model Exchange: the calls of FMI 2.0.4 §3.2 over the model
  * interface; the importer integrates, the model decides at events. */
 #include <math.h>

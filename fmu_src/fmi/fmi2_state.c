@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 FMU state: get, set, free, serialize, deserialize, over the
  * snapshots of instance_state.c, in the importer's memory. */
 #include "fmi2_instance.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 calls common to Model Exchange and Co-Simulation, on the instance
  * of instance.h: instantiation, the state machine's common transitions, the
  * event update, derivatives, and the features this FMU does not have

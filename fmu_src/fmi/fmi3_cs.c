@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 Co-Simulation: fmi3DoStep integrates the model with the embedded
  * CVODE (instance_step). What happens at an event inside a step is the
  * master's choice at instantiation:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 3.0 files share: the instance (instance.h) with the
  * importer's callbacks and Co-Simulation's choices, the call guards. The
  * model is reached only through instance.h and model.h. */

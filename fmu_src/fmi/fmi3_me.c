@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 Model Exchange: the calls of FMI 3.0 §3.2 over the instance; the
  * importer integrates, the model decides at events (fmi3UpdateDiscreteStates
  * in fmi3_common.c). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 FMU state: get, set, free, serialize, deserialize, over the
  * snapshots of instance_state.c (FMI 3.0 has no memory callbacks: malloc). */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 getters and setters. The model's Reals are Float64, its Integers
  * Int32, its Booleans Boolean (all scalars); the event indicators and time
  * are Float64 variables after them. No other type has a variable here:

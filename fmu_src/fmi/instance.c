@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The instance under any FMI version (instance.h): logging, errors, the
  * event update, checked access to the model's variables and derivatives. */
 #include "instance.h"

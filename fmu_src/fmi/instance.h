@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What an instance is under any FMI version: its state in the state machine,
  * its log, its time, the model, and Co-Simulation's integrator. The FMI 2.0
  * and 3.0 layers wrap it with their own callbacks and types; it knows the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* An instance's FMU state under any FMI version: a snapshot, its checked
  * byte layout. The FMI layers allocate, hand over and free the snapshots.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* An instance's FMU state under any FMI version (instance_state.c): the
  * snapshot the FMI layers hand out as fmi2FMUstate or fmi3FMUState, and its
  * versioned, checksummed byte layout. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A Co-Simulation step under any FMI version (instance.h): the explicit
  * Dormand-Prince pair of explicit_rk.c integrates the model, or, where a
  * sustained contact makes it stiff, the embedded CVODE of cosim.c; each event

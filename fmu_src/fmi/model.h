@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The model interface: everything a model provides to the FMI layers that sit
  * on it, in the way of the Reference-FMUs. An FMI file calls only these
  * functions and knows no state, mode or physics; the model knows no FMI.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What every model shares, made once from its config.h: the table of its
  * variables (MODEL_VARIABLES), a variable's field read and written, the fields
  * an FMU state holds, the accessors of the states and of what the model

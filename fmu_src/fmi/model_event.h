@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What a model's event update did (model.h), in a header of its own so that a
  * model's shared parts (contact_record.h), which config.h includes before model.h
  * is complete, can fill it in. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The sources' external names, prefixed like the FMI functions when the FMU
  * is compiled with FMI2_FUNCTION_PREFIX or FMI3_FUNCTION_PREFIX (e.g.
  * -DFMI2_FUNCTION_PREFIX=PainleveRod_):

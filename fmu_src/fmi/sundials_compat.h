@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The three places where SUNDIALS 6 and 7 differ for a CVODE user like us,
  * switched on SUNDIALS' own version macro here and nowhere else: the
  * communicator a context takes, how errors are reported (6: a handler

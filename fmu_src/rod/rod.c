@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The compliant Painleve rod (Hogan & Kristiansen) as the contact core's first body.
  *
  * The body (rod_evaluate): generalized coordinates (x, y, theta), the contact end and

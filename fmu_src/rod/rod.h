@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The compliant Painleve rod of Hogan & Kristiansen: physics only, no FMI.
  *
  * The rod is the contact core's first body (contact.h, docs/general_body.md): its

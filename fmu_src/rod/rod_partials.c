@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Partial derivatives of the rod's smooth branches, derived by hand from the
  * equations that rod.c evaluates (the paper's eq coeffs and eq Sw, docs/model.md §1,
  * the exact Filippov sticking field of rod.c's mode_gains).

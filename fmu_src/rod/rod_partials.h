@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Analytic partial derivatives of the rod's smooth branches:
  * what fmi2GetDirectionalDerivative answers, for every (unknown, known) pair
  * that modelDescription.xml's ModelStructure declares. Physics only, no FMI. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The event iteration of a rod model (PainleveRod, PainleveRodSI): the contact core's
  * record (contact_record.h) on the rod body, for the calls that need the rod's contact,
  * and the rod's state variables for a model's config.h list. (The record's variables,

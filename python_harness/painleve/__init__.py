@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The compliant Painleve rod: analytic results of Hogan & Kristiansen and IWC experiments on the FMU.
 
     from painleve import Case, Experiment, analytic

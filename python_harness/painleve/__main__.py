@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`python -m painleve`: the `painleve` command."""
 import sys
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """bench/arm_table.py's claim, checked where the reference is cheap: TwoLinkArm through one
 fmi2DoStep to the independent numpy arm's return (DOP853 at 1e-12) has the reference's w there
 within 1e-6 v0 at the FMU's default tolerance and at the harness's, out of contact, after the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The benchmark's runners compute the same IWC, and its growth fit reads exponents right.
 (Speed is the benchmark's business, bench/bench.py; here only what its numbers mean.)"""
 import math

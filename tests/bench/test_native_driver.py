@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The native Model Exchange driver (bench/native/painleve_native_me: the FMU under
 SUNDIALS CVODE, no Python in the loop) against the paper and against fmpy.
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Calls with bad arguments, each in every instance state: NULL pointers, value
  * references that are not the type's or not the model's, nvr = 0 and huge nvr,
  * a million value references (fmi_driver's robustness tests). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 2.0 conformance table's files share (conformance_table.c,
  * conformance_variables.c): where a call leaves the instance, and the check of
  * a call's status against the table. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 3.0 conformance table's files share (fmi3_conformance.c,
  * fmi3_conformance_variables.c): where a call leaves the instance, and the
  * check of a call's status against the table. */

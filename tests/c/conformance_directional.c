@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fmi2GetDirectionalDerivative for every (unknown, known) pair that FMI
  * 2.0.4 defines in each mode, from the <ModelStructure> of
  * modelDescription.xml (§2.1.9, §2.2.8):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Every FMI 2.0 call in every state of both state machines, to the letter
  * of FMI 2.0.4: the tables of §3.2.3 (Model Exchange) and §4.2.4
  * (Co-Simulation), the status queries of §4.2.3 and the Error state of §2.1.3.

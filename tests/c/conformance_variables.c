@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The calls that read or set variables, variable by variable from
  * modelDescription.xml, in every state of both state machines against the
  * numbered conditions of the tables of FMI 2.0.4 §3.2.3 and §4.2.4 (a part of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The regression inputs of tests/c/corpus that replay a finding as a readable call
 sequence: each is written here in the byte format of fuzz_fmi.c (FMI 2.0) or
 fuzz_fmi3.c (FMI 3.0) (see fuzz_bytes.h), so that the file can be remade and

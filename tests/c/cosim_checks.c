@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation: instances started and stepped, bad communication steps refused,
  * an FMU state taken mid-run restoring the run (fmi_driver's robustness tests). */
 #include <float.h>

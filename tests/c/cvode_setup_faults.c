@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Co-Simulation's CVODE failing at each SUNDIALS call of its set-up and
  * restarts in turn (the FMU built with fail_sundials_call.c, which makes the
  * chosen call return its documented failure): every failure must end the step

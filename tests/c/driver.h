@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the files of the C driver (fmi_driver) share: the loaded FMU, the
  * check counter, and the instance states of FMI 2.0.4 with the calls that
  * reach them and the runs that show an instance still works. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the files of the FMI 3.0 driver (fmi3_driver) share: the loaded FMU,
  * the instance states of FMI 3.0's state machines (§3.2 Model Exchange, §4.2
  * Co-Simulation, the common states of §2.3) with the calls that reach them

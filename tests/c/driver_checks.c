@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The driver's checks: counted, and reported with file and line; names in messages; exact copies of bytes. */
 #include <ctype.h>
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Linked into a test build of the FMU with -Wl,--wrap=NAME for each SUNDIALS
  * call below: the call chosen by fault_fail_sundials_call returns the failure
  * SUNDIALS documents for it (NULL, or a negative flag) instead of running.

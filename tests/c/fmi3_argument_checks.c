@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 calls with bad arguments, each in every instance state: NULL
  * pointers, wrong array sizes (nValues != nValueReferences), unknown value
  * references and every getter and setter type (fmi3_driver's robustness tests). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Every FMI 3.0 call in every state of the Model Exchange and Co-Simulation
  * state machines, to the letter of FMI 3.0 (the release the model description
  * declares, fmiVersion="3.0"): the "Allowed Function Calls" of the common

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The FMI 3.0 getters and setters, variable by variable from the FMI 3.0
  * modelDescription.xml, in every state of both state machines against the
  * "Allowed Function Calls" of FMI 3.0 (a part of the conformance table,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 Co-Simulation: early return and Event Mode (a step while an event is
  * pending is refused) (fmi3_driver's robustness tests). */
 #include <float.h>

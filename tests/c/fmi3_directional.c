@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative for every
  * (unknown, known) pair that FMI 3.0 defines in each state, from the
  * <ModelStructure> of the FMI 3.0 modelDescription.xml (§2.2.11 "Getting

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A model's FMI 3.0 layer (PainleveRod, or fmu_src/models/NAME as fmi3_driver_NAME,
  * with what its profile, profiles/NAME.h, says of it) through its C ABI, as an
  * importer loads it (dlopen): every fmi3 call in every state of both interfaces against FMI 3.0

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 serialized FMU states cut short or with a byte changed are refused,
  * never read past their end (fmi3_driver's robustness tests). */
 #include <math.h>

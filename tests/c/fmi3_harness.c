@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Shared by the FMI 3.0 driver and fuzz target: see fmi3_harness.h. */
 #include "fmi3_harness.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 3.0 driver and fuzz target share: the FMU's fmi3* functions
  * looked up with dlopen/dlsym as an importer does, a logger that counts and
  * checks every message (into the counts of fmi_harness.h, shared with the FMI

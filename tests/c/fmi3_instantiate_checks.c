@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 instantiation, what the FMU does not have (Scheduled Execution,
  * clocks, Configuration Mode, per-element dependencies), and log messages that
  * are text (fmi3_driver's robustness tests). */

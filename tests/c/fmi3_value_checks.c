@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 bad values: NaN and out of range, refused with a message that names
  * the variable and its range (fmi3_driver's robustness tests). */
 #include <float.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A model's FMU (PainleveRod, or fmu_src/models/NAME as fmi_driver_NAME) through its
  * C ABI, as an importer loads it (dlopen): every FMI
  * function in every instance state of both interfaces against FMI 2.0.4

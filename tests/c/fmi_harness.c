@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Shared by the driver and the fuzz target: see fmi_harness.h. */
 #include "fmi_harness.h"
 

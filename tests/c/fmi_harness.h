@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the C driver and the fuzz target share: the FMU's functions (looked up
  * by importer/fmi2_functions.c, as the benchmark's native driver does), callbacks that count allocations and
  * check every log message, and an explicit-Euler simulation through FMI calls. */

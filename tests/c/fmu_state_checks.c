@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Serialized FMU states cut short or with a byte changed are refused, never read
  * past their end (fmi_driver's robustness tests). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* libFuzzer target: every call returns, with a legal status, whatever the
  * tolerance, start time, step sizes, parameters, start states and inputs.
  * One input is one run of one instance (FMI 2.0: fuzz_bounded for

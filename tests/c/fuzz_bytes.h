@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the fuzz targets (fuzz_fmi.c for FMI 2.0, fuzz_fmi3.c for FMI 3.0) read
  * from libFuzzer's bytes: one byte, or a double that is an edge value, a modest
  * decimal or any bit pattern; and the invariant that aborts (a finding). Each

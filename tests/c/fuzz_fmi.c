@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* libFuzzer target: the input's bytes become a sequence of FMI calls on up to
  * three instances of a model (one target per model: fuzz_fmi for PainleveRod,
  * fuzz_fmi_NAME for fmu_src/models/NAME), with the values, value references, counts

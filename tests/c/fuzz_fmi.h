@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the files of the FMI 2.0 fuzz target (fuzz_fmi.c) share: the loaded FMU,
  * the input being decoded, the three instances, the checked call, and the calls
  * that the opcodes name. */

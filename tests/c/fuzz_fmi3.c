@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* libFuzzer target for the FMI 3.0 layer: the input's bytes become a sequence
  * of fmi3 calls on up to three instances (Model Exchange, Co-Simulation with
  * and without Event Mode and early return), with the values, value

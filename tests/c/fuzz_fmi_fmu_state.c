@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fuzz_fmi's FMU states: got, serialized, changed, cut or extended, deserialized
  * and set; and bytes that never were a state. */
 #include <stdint.h>

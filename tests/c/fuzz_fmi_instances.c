@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fuzz_fmi's instances: the bytes that become a value reference or a count, the
  * three slots, the invariants every call's status must hold, fmi2Instantiate. */
 #include <limits.h>

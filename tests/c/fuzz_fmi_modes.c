@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fuzz_fmi's calls that move an instance between modes: event handling, the
  * lifecycle (initialization, termination, reset), and logging. */
 #include <math.h>

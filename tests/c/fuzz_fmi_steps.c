@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fuzz_fmi's steps: Co-Simulation's fmi2DoStep and status queries, the optional
  * calls, and whole stretches of a simulation. */
 #include <float.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fuzz_fmi's calls on values: fmi2Get and fmi2Set of every type, the arrays of
  * Model Exchange (states, derivatives, event indicators, nominals), directional derivatives. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The inputs of modelDescription.xml (causality = "input"): that an FMU state
  * carries them (get, set, serialize, deserialize), that a Co-Simulation step
  * after an input jump restarts from the new input, and, for a model with a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Instances brought to each state of FMI 2.0.4's state machines, and the
  * runs that show an instance still works after a call (see driver.h). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* fmi2Instantiate's arguments, allocations failing at each allocation of
  * fmi2Instantiate in turn, and logging (fmi_driver's robustness tests). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Instances together: stepped in turn and independent, and instantiated,
  * simulated and freed in cycles with a flat resident set (the memory soak). */
 #include <math.h>

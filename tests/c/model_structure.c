@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The questions of model_structure.h, answered from the generated tables. */
 #include "model_structure.h"
 

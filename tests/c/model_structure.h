@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The variables and <ModelStructure> of modelDescription.xml, as C tables
  * generated at configure time by model_structure.py (model_structure_data.c),
  * (either FMI version), and the questions FMI 2.0.4 asks of them (FMI 3.0

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Writes model_structure_data.c: the variables and the <ModelStructure> of
 modelDescription.xml as C tables for the conformance tests (model_structure.h),
 so that the tests follow the XML the FMU ships with rather than a copy of it.

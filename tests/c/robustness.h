@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the files of fmi_driver's robustness tests share (FMI 2.0): instances
  * in a state and the checks after an error (instance_states.c), Co-Simulation
  * runs (cosim_checks.c), and the tests that fmi_driver.c runs. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the files of fmi3_driver's robustness tests share (FMI 3.0): a call
  * checked in a state, and the tests that fmi3_driver.c runs. */
 #ifndef ROBUSTNESS3_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* rod_partials against central finite differences of the functions it
  * differentiates (rod_derivatives, rod_normal_force, rod_friction_force,
  * rod_energy), at random states, parameters and applied loads, in every mode: flight (both

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* rod.c's event update on states placed exactly on a switching surface, which
  * no importer reaches on purpose but round-off does: the state must leave the
  * surface to the side the mode lives on, by moving a state the indicator

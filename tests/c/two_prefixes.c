@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Two copies of PainleveRod's sources, compiled with FMI2_FUNCTION_PREFIX A_
  * and B_ and linked statically into this one program, run side by side: the
  * default experiment through Co-Simulation, steps interleaved. They must not

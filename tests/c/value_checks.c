@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Bad values: NaN, infinities and out-of-range values of every settable Real,
  * refused with an error that names the variable (fmi_driver's robustness tests). */
 #include <ctype.h>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The `painleve` command run as a user runs it (a subprocess, tests/helpers/cli_run.py), with
 what it wrote checked: iwc, validate (on the built FMU and on one built with a wrong physics
 constant), figures (their points on the analytic curves), and bad input in one line. The

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve iwc`, `validate` and `figures` through the generic body path (cli.body), on the rod
 FMUs with --set: the FMU's outputs alone must give the rod's known e, wedge and a passing validation."""
 import json

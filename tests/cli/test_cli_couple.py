@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve couple` run as a user runs it (a subprocess): the coupled study's figure, table and
 SSP archive, the printed impulses checked against the written table, every master; bad input
 and failed runs end in one line on stderr with nothing left behind in the temporary directory."""

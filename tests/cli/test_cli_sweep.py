@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The `painleve sweep` command run as a user runs it (a subprocess), with what it wrote
 checked: dask equals serial; an interrupted sweep (on dask or in this process) resumes without recomputing; a row cut
 by a crash is rerun; a different sweep into the same file is refused."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """PainleveRodSI on a ShakerTable, coupled through an SSP archive (painleve.coupling.coupled) and run by
 fmpy's SSP master and by libcosim and ecos (painleve.coupling.masters). Every assertion is a number the
 physics or the master's scheme fixes, not one of the code's own outputs:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The coupled study with the FMI 3.0 FMUs (build/fmi3/PainleveRodSI.fmu on build/fmi3/ShakerTable.fmu,
 issue #25): in every master that loads FMI 3.0 (masters.FMI3_MASTERS: ecos) the momentum balance
 closes as with FMI 2.0 and the coupled trajectory is the FMI 2.0 one (the same model cores and

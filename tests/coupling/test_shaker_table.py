@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """ShakerTable.fmu (fmu_src/models/ShakerTable, issue #15's second FMU): a table top of mass M on a
 spring K and a damper C, driven by F0 sin(2 pi f t) and loaded by the input F_N,
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """ShakerTable.fmu's FMI side (its physics: test_shaker_table.py): fmpy's validation, the
 variable list of config.h against the model description, the documentation's units, the
 source FMU built by a tool, an input set by a master between its steps, analytic directional

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The SI rod against the laws of mechanics, with its inputs (docs/si_model.md §8-10), none
 of which uses the model's equations: Galilean invariance (a floor at constant velocity gives
 the motion relative to it that a fixed floor gives), the centre of mass's momentum and the

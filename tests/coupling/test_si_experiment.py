@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's SI loop (painleve.coupling.si_experiment) against fmpy's own: with constant inputs its
 Model Exchange loop is fmpy's simulate_fmu, and a belt switched on (an input that jumps) is
 handed over at its instant in both interfaces, the same way."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """PainleveRodSI with the floor fixed and no loads is PainleveRod in SI units (docs/si_model.md
 §7): the two FMUs' trajectories, put in the same units by the paper's scaling, agree to the
 solver's tolerance through Model Exchange and Co-Simulation, and the SI model passes the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """painleve.coupling.si: the SI rod's parameters and starts in the paper's units and back
 (docs/si_model.md §5, §7), checked against numbers worked by hand from the definitions
 alpha = m l^2/J, epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k), T = sqrt(l/g)."""

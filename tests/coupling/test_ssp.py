@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The SSP archive generator (painleve.coupling.ssp), its validation (painleve.coupling.ssp_check: fmpy's schema
 check, fmpy's FMU validation and the cross-checks fmpy leaves out) and the three masters that
 run it (painleve.coupling.masters), on two PainleveRod instances (no inputs: nothing is connected).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """libcosim and ecos run PainleveRod.fmu from a system structure file, two instances
 at once: an OspSystemStructure.xml (libcosim; one rod with a parameter set in the
 file), an SSP SystemStructure.ssd as a directory (libcosim) and as an .ssp archive

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The one definition of an IWC's phases (painleve.experiments.outcome.phases), on switch lists whose
 durations follow from the definition by hand, and the same phases read off the FMU and
 off the independent scipy reference."""

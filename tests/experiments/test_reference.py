@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The solve_ivp reference (painleve.experiments.reference) against the paper and against the FMU.
 
 Two independent implementations of docs/model.md (sticking by the exact Filippov

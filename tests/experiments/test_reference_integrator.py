@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The solve_ivp reference's integrator (painleve.experiments.reference) piece by piece, and
 its refusals: sticking friction against slip friction at the folds, the coefficients against
 analytic.py's, the Jacobian against the right-hand side, a grazing dip caught within one step,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The generic body path (painleve.fmu.body) on the rod FMUs: coefficients read from the FMU's
 outputs, the start state solved from its own y, v, w, the IWC run; it must give the rod's known e
 (analytic's closed form, an independent path: the rod's own formulas at theta0), the error falling

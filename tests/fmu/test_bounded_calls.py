@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every call returns (issue 23): random legal cases of every built FMU, both
 interfaces and FMI versions (bench/bounded_cases.py draws them: parameters within
 the model description's min/max, states, inputs, tolerances from 1e-14 to 48.125,

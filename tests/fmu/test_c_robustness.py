@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU's C code under AddressSanitizer + UBSan, valgrind memcheck and
 libFuzzer: tests/c is built with clang (its own CMake project, which compiles
 fmu_src/ itself), the driver exercises every FMI call against the dlopened

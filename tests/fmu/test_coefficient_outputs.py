@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The coefficient outputs a, b, p_plus, p_minus, q_plus, q_minus, S_w of PainleveRod and
 PainleveRodSI (issue #27) at random states, against the paper's closed forms (eq coeffs,
 eq Sw: tests/helpers/paper_formulas.py), a second derivation from the mass matrix and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Co-Simulation in the same FMU: the embedded CVODE integrates the same model
 and events as Model Exchange, for any master and any communication step."""
 import pathlib

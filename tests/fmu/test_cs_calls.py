@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The Co-Simulation fast loop's FMI calls straight into the FMU's C functions (cs_calls.DirectCalls,
 the harness's default on an FMI 2.0 FMU) are fmpy's calls: the same outcome of every case, to the
 last bit, as through fmpy's wrappers (WrapperCalls), whether the record tells it after the first

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's Co-Simulation fast loop: one long first doStep, the outcome read off the FMU's
 record of its switches and the free flight run back in closed form, gives the stepped loop's
 outcome within the tolerance, and the lift-off w of a tight independent Model Exchange run."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """fmi2GetDirectionalDerivative (issue #12) against central finite differences of
 the FMU's own values, and modelDescription.xml's ModelStructure against what the
 FMU computes.

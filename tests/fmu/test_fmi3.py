@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """PainleveRod as an FMI 3.0 FMU (build/fmi3/PainleveRod.fmu): the same model and
 instance as the FMI 2.0 FMU under FMI 3.0's layer, its model description made from
 the FMI 2.0 one; Co-Simulation that returns early at each mode switch and hands

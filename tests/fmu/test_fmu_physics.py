@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU's physics against laws and closed forms: free flight, energy,
 quasi-static slipping, Filippov sticking, and impact without collision."""
 from ctypes import POINTER, c_double

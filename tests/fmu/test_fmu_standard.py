@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU as an FMI 2.0 component: validation, importers, source build,
 the state machine, bad input, logging, independent instances."""
 import shutil

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """FMU state: saved during stick, restored, serialized into a new instance, the
 run continues bit for bit; bad bytes are refused with a message."""
 import struct

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The Model Exchange fast loop (painleve.fmu.me_fast_loop: fmpy's CVode from event to event)
 against fmpy's own simulate_fmu, its handling of an FMU that refuses a call, and the
 fmpy internals it stands on (painleve.fmu.fmpy_internals), which an fmpy update may move."""

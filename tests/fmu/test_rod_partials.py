@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """rod_partials (fmu_src/rod/rod_partials.c) against central finite differences of the
 functions it differentiates, at random points in every mode: tests/c/rod_partials_check.c,
 compiled here with the FMU's warnings as errors and under AddressSanitizer + UBSan."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The source FMU as a tool builds it: every source in sources/ and in <SourceFiles>,
 fmpy's own build of it (with and without CVODE), and the sources linked statically
 twice into one program under two FMI2_FUNCTION_PREFIXes. The FMU carries the CVODE

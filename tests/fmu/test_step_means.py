@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """PainleveRod's step means F_N_mean, F_T_mean (issue #25; PainleveRodSI's are in
 tests/coupling/test_momentum_coupling.py): in Co-Simulation the contact forces averaged over the
 last communication step, in Model Exchange the forces themselves. The reference is the forces'

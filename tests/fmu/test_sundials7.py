@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Co-Simulation built against SUNDIALS 7 (Debian 12 ships 6.4): the FMU's
 sources, linked statically with the CVODE 7.1.1 that `bash run.sh test` builds
 into .tools/sundials-7.1 (from crates.io sundials-sys), give Theorem 1 as the

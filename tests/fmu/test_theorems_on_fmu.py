@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Theorems 1 and 2 of Hogan & Kristiansen, checked on the FMU through the harness:
 the simulated IWC converges to the analytic limits as eps -> 0."""
 import math

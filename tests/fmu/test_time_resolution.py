@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The Zeno guard's instant against the time's resolution (fmu_src/contact/contact_record.h):
 an autonomous body's contact gives the same outcome whenever it starts, as long as the time
 can place its events; a contact faster than the time resolves ends in the guard, which says

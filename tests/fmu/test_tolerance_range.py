@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The relative tolerances for which Co-Simulation answers right (docs/bounded_calls.md):
 1e-12 to 1e-3. Outside, the FMU clamps with a warning, so no tolerance turns the mode
 logic into a wrong answer: the IWC at either end of the range, and at the fuzzer's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """TwoLinkArm as an FMI 3.0 FMU (build/fmi3/TwoLinkArm.fmu): the same core and instance as its FMI
 2.0 FMU under FMI 3.0's layer, its model description made from the FMI 2.0 one
 (cmake/fmi3_model_description.py). As test_fmi3_coupled_models.py does for PainleveRodSI and

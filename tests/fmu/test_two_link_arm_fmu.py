@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """TwoLinkArm.fmu through the generic body path, against the independent numpy arm
 (helpers.arm_lagrange, helpers.two_link_arm_iwc) and the theory (painleve.theory.general):
 its outputs are the numpy model's, its IWC converges to e of its own coefficients as eps falls,

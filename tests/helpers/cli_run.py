@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The `painleve` command run as a user runs it, for the tests of tests/cli: a subprocess of
 the installed console script (else the module), and its one-line error."""
 import pathlib

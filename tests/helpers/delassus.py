@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The coefficients of eq Painleve for any rigid body, computed here from its mass matrix and
 the contact point's Jacobians (numpy; independent of the FMUs' C): with the generalized
 coordinates q, mass matrix M, the contact point's tangential and normal rows W_T, W_N

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """fmi-sim (crates.io, Rust): a second FMI 2.0 importer, independent of fmpy.
 
 `bash run.sh test` installs it into .tools/. Its Model Exchange is forward Euler

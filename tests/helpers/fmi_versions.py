@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What an FMI 3.0 FMU made from an FMI 2.0 one (cmake/fmi3_model_description.py) must keep of it."""
 from fmpy import read_model_description
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A small reader of Mach-O libraries (the macOS binaries of the FMUs, which no Mac runs here):
 the slices of a universal (fat) file, and per slice its CPU, file type, the libraries it
 loads, its install name, its minimum macOS (LC_BUILD_VERSION) and its code signature, whose

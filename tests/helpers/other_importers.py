@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Four FMI 2.0 importers independent of fmpy, each running PainleveRod.fmu's default
 experiment (no start value changed) on a fixed communication grid.
 

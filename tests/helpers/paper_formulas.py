@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paper's formulas written out again for the tests of painleve.theory.analytic
 (tests/theory/test_analytic*.py), independent of the module: eq coeffs and eq Sw,
 the positive root of eq lambdapm2, the Painleve wedge found by bracketing."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every platform's binary of a multi-platform FMU (build/platforms/, `bash run.sh platforms`),
 run by the project's platform driver (tests/platforms/platform_driver.c) compiled for that
 platform: x86_64-linux natively, x86_64-windows under wine64, aarch64-linux under qemu-user

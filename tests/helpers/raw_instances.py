@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Raw FMI 2.0 instances for tests that need each call in hand (interleaved
 instances, captured log messages, calls in the wrong state): the instance
 comes from the harness's Experiment.instantiate, the calls are fmpy's."""

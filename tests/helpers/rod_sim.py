@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Drives the FMU through the harness for the tests, and reads trajectories the way a physicist would."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """ShakerTable's physics for its tests (tests/coupling/test_shaker_table*.py): the defaults of
 its model description, both interfaces, a start with a transient, and the closed-form solution
 of the forced damped oscillator M z'' + C z' + K z = F0 sin(2 pi f t) - F_N (piecewise in a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What the SI rod's tests share (the FMU is conftest's si_fmu_path): the rod's mechanics
 computed here from the outputs by the laws of docs/si_model.md §9-10 (not by the model's
 equations): energy and the inputs' work."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A source FMU built as a tool builds it (fmpy's build_platform_binary from <SourceFiles>),
 with the SUNDIALS libraries the project's own build found."""
 import pathlib

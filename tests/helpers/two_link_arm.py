@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The two-link arm of fmu_src/models/TwoLinkArm written out again for its tests, from the
 links' centres of mass alone (numpy; not the FMU's closed forms): the mass matrix as
 sum m_i J_i^T J_i + J_i e^T e over the links (J_i the centres' Jacobians), gravity and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Direct simulation of the compliant two-link arm (helpers.arm_lagrange) through an impact
 without collision, by its own equations of motion in (theta, omega): no coefficient of eq Painleve,
 no Filippov formula, no phase the theory predicts is assumed.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Four more FMI 2.0 importers, installed by `bash run.sh test` from PyPI and Maven
 Central, run the default experiment (an IWC at eps = 1e-3, t = 0 .. 0.1, no start value
 changed) through Co-Simulation: libcosim, ecos, FMI4j, JavaFMI (tests/helpers/other_importers.py;

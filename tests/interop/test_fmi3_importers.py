@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Importers other than fmpy run the FMI 3.0 FMU (build/fmi3/PainleveRod.fmu) through
 its default experiment (an IWC at eps = 1e-3, t = 0 .. 0.1) and agree with fmpy as far
 as their solvers allow.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """FMI4j (Maven Central, info.laht.fmi4j 0.38.0) runs PainleveRod.fmu's default experiment
 through FMI 2.0 Model Exchange: FMI4j's instance (its JNI layer makes every FMI call)
 under a fixed-step forward Euler master, tests/importers/jvm/.../ModelExchangeEuler.java,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A second FMI importer, fmi-sim (Rust, crates.io), loads PainleveRod.fmu, runs
 the default experiment (an IWC) and agrees with fmpy as far as its solver allows.
 

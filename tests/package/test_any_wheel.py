@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """One wheel for every platform: `bash run.sh platforms` makes build/platforms/dist/
 painleve-*-py3-none-any.whl, whose painleve package carries the multi-platform FMI 2.0 FMUs
 (build/platforms/: linux64, win64 and darwin64 binaries in each). Installed into a fresh

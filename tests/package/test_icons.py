@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every FMU shows its model's icon: model.png at the root of an FMI 2.0 FMU and
 terminalsAndIcons/icon.png in an FMI 3.0 one (the places the standards name), the drawing
 cmake/fmu_icons.py makes (fmu_src/models/NAME/icon.png, committed: the script run again gives

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's layers (docs/architecture.md) import only downwards: theory < experiments < fmu <
 coupling, validation, sweep < figures < cli; no module imports itself back through others; the
 theory and the experiments load no fmpy; nothing imports the CLI; the top level is the public

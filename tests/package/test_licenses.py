@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Everything the build ships carries its license and the third-party notices: every FMU
 (build/, build/fmi3/, build/platforms/ and its fmi3/, and the FMUs inside the wheels) has
 documentation/licenses/ with the project's LICENSE, the license of each SUNDIALS it contains

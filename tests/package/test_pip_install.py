@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """One pip command installs the harness with its FMU: in a fresh virtual environment,
 `pip install` of a copy of the repository (no CMake call by hand) builds PainleveRod.fmu
 with the project's CMake (scikit-build-core), puts it inside the painleve package of the

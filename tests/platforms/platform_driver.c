@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The platform driver: runs cases on one FMU binary and prints its outputs bit
  * for bit, so that tests/platforms/test_platforms.py compares every platform's
  * binary (win64 under wine, aarch64 under qemu) with x86_64-linux's. It is

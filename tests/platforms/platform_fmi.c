@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* platform_fmi.h over FMI 2.0 and FMI 3.0: the library loaded with the
  * platform's own loader, each call mapped onto its version's function. */
 #include "platform_fmi.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* One FMU binary, FMI 2.0 or 3.0, behind the few calls the platform driver
  * makes (platform_driver.c), loaded as an importer on that platform loads it:
  * LoadLibrary on Windows, dlopen elsewhere. */

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The macOS binaries of the multi-platform FMUs (build/platforms/, `bash run.sh platforms`:
 zig's clang and Mach-O linker, llvm-lipo-14), checked statically: no Mac runs them here.
 FMI 2.0's darwin64 holds one universal library (x86_64 and arm64), FMI 3.0's x86_64-darwin and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Issue #26: one FMU per model and FMI version with every platform's binary in it
 (build/platforms/, `bash run.sh platforms`), and the same numbers on every platform.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A random sweep's draws over arrays (sweep.draws: numpy's SeedSequence and PCG64 written over
 the batch's ids) are numpy's own default_rng([seed, id]).random(n), bit for bit, for every id and
 seed, at the 32-bit words' edges, and outside them (where default_rng itself draws)."""

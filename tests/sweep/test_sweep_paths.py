@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Where a sweep runs (sweep.plan: this process, or a local dask cluster after a first chunk
 here) and in what chunks never changes its numbers: every path gives the rows of one serial
 chunk bit for bit, and the FMU's w at the return still falls on Theorem 1's e. The plan's own

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A sweep's row of a case is the generic harness's, bit for bit: the sweep's path (the FMI calls
 straight into the FMU's C functions, the batch's predictions over arrays handed to each run, the
 row a tuple) against a second, generic one (Experiment.run through fmpy's wrappers, Outcome.as_row

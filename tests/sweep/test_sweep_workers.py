@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A sweep's worker frees its FMU instances only when no batch is using them: the driver's
 clean-up (client.run(_close_experiments)) runs in another thread of the worker than the batch,
 and an instance freed while CVode integrates in it corrupts the heap (an interrupted sweep's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Tests of painleve.theory.analytic against the paper's laws and independent computations.
 
 Expected values are recomputed here from the paper's definitions (eq coeffs,

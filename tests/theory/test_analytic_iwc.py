@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Tests of painleve.theory.analytic's impact without collision (IWC) against the paper's
 laws and independent computations: e two ways, its asymptotes in delta, the rest of
 Theorem 1, Theorem 2's w1*. The coefficients, the wedge, the eigenvalues and the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Tests of painleve.theory.general, the paper's results for any body from its coefficients.
 
 The rod is a special case: its coefficients written out again (helpers.paper_formulas.coef)

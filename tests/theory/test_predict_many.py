@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """predict_many (a sweep batch's predictions over arrays) gives analytic.predict's numbers case by
 case: Theorem 1 and 2 cases, cases outside the hypotheses (NaN where predict has NaN), a nonlinear
 law (case by case), in one mixed batch."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The rigid limit of IWC for a nonlinear compliance law (painleve.theory.rigid_limit, issue #16),
 against the paper's closed forms for the linear law, an energy argument for the
 undamped law, the scaling of the law, and a second, independent integration."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paper's theory for d = 2 (docs/general_body_theory.md) against direct simulation of an
 independent numpy model of the compliant two-link arm (helpers.arm_lagrange, helpers.two_link_arm_iwc).
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRod's metadata: what the generic FMI layer needs to know of this
  * model, in one place. The variable list below drives the value references,
  * range checks, getters, setters and the FMU state; its order is that of

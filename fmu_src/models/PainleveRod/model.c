@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRod on the model interface (model.h): its variables, states, modes
  * and events over the physics of rod.c. Knows the rod, not FMI. */
 #include "model.h"

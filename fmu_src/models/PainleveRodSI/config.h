@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI's metadata: the paper's rod in SI units, with inputs for a
  * moving floor and applied loads, over the same physics (rod.c) and event
  * iteration (rod_record.c) as PainleveRod. The variable list drives value

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI on the model interface (model.h): the rod of rod.c in SI
  * units, driven by a moving floor and applied loads (docs/si_model.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI's partial derivatives (see rod_si_partials.h).
  *
  * The accelerations and contact forces are an SI factor A times a quantity of

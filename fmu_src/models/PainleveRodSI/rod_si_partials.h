@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI's partial derivatives: its SI unknowns with respect to its SI
  * parameters, inputs and states, by the chain rule through the scaling of
  * rod_si.c from the rod's own analytic partials (rod_partials.c), or directly

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI's moving floor, in a header of its own below rod_si.c (the
  * scaling, the inputs) and rod_si_partials.c (d / d w_floor), so that neither
  * calls the other. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* ShakerTable's metadata (see models/PainleveRod/config.h for the pattern): a table top
  * of mass M on a spring K and a damper C, vertical only, driven by
  * F0 sin(2 pi frequency t) and loaded by the rod's normal force F_N:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The two-link arm's kinematics and dynamics for the contact core (arm_body.h).
  *
  * Lagrange's equations in absolute angles, with beta = m2 l1 l2 / 2, c12 = cos(theta1 - theta2),

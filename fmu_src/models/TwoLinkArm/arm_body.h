@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The two-link arm as a body of the contact core (contact.h; docs/general_body.md):
  * a fixed pivot at height H above the floor, link 1 (mass m1, length l1, inertia J1
  * about its centre, at its middle) from the pivot to the elbow, link 2 (m2, l2, J2)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* TwoLinkArm on the model interface (model.h): the arm of arm_body.c in SI units over
  * the contact core (contact.c, contact_events.c, contact_record.c). Knows the arm,
  * not FMI.

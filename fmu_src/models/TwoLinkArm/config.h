@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* TwoLinkArm's metadata: a planar two-link arm whose tip drags on a rough floor,
  * the contact core's second body (arm_body.h), in SI units. The variable list
  * drives value references, range checks, getters, setters and the FMU state; its

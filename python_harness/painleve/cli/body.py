@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve iwc`, `validate` and `figures` for any body FMU (`--fmu TwoLinkArm.fmu`, or the rod
 through the same path with `--set`): the start, the theory and the figure from the FMU's own outputs
 (fmu.body, validation.body, figures.body), through either interface, nothing body-specific here."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve couple`: the SI rod on a shaker table, co-simulated from an SSP archive in one
 of three masters; a figure, the impulses on both sides, the state at the end."""
 import argparse

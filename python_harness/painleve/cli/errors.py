@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The one place where a failure becomes what the user of the `painleve` command reads:
 the errors a command raises, and the exit status and one line each ends in."""
 

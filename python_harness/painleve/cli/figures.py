@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve figures`: the paper's figures from simulations of the FMU."""
 from . import body
 from .errors import UsageError

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMUs a `painleve` command runs, checked before any simulation so that a wrong one
 ends in one line saying what to do: PainleveRod.fmu for iwc, validate, figures and sweep,
 the rod in SI units and the shaker table for couple."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve iwc`: one IWC case simulated with the FMU, beside the paper's prediction
 (a table, or one JSON object)."""
 import math

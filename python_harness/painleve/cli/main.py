@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The `painleve` command: one IWC case, validation of an FMU build, the
 paper's figures from simulations of the FMU, and sweeps on dask.
 

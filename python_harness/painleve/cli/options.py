@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What every `painleve` command's options share: a parser that reports bad input in one
 line saying what to change, argument types, the case and FMU options, and the probe of a
 path a command will write."""

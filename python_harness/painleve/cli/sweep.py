@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve sweep`: many IWC cases, here or on dask, written as they finish, resumable."""
 import argparse
 import pathlib

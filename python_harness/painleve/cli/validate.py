@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve validate`: the validation suite on an FMU build, as a table, JSON or a report file."""
 import pathlib
 import time

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The coupled study: PainleveRodSI on a ShakerTable, one SSP archive, run by a
 co-simulation master (painleve.coupling.masters).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Three co-simulation masters that run an SSP archive (painleve.coupling.ssp), each returning the same
 table: one row per communication point t_k = k h, k = 1 .. N (stop = N h), field "time" and
 one field per recorded variable "component.variable" (an output's value at t_k; an input's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """PainleveRodSI, the rod in SI units with inputs, in the paper's units and back.
 
 The scaling of docs/si_model.md §5: lengths in the half-length l, time in T = sqrt(l/g),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Runs PainleveRodSI.fmu (the rod in SI units, docs/si_model.md) with its inputs, on fmpy.
 
 `SIExperiment` is an `Experiment` (one extraction, one instance, reset between runs) of the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An SSP 1.0 archive (System Structure and Parameterization, ssp-standard.org) written from
 built FMUs: `SystemStructure.ssd` and `resources/NAME.fmu`, zipped into one `.ssp` file.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Validation of an SSP archive: what fmpy 0.3.32 offers, and the consistency it leaves out.
 
 fmpy's SSP support (fmpy.ssp) has no `validate` command: `fmpy validate` reads FMUs only,

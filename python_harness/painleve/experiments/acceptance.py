@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """When a simulated rod agrees with Theorems 1 and 2: the one set of acceptance
 rules, used by `painleve validate` and by the tests.
 

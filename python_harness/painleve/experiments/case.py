@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An IWC experiment as an input record: the rod's parameters and its state on the
 floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Ctrl-C (SIGINT) and SIGTERM that are not lost. Python raises KeyboardInterrupt wherever the
 signal finds it; inside a function that C calls back (fmpy's CVode right-hand side or root
 function, an FMU's logger) or a `__del__`, Python prints the exception and drops it, and the run

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What one IWC run did, for any body, and the one definition of its phases and of its return.
 
 Every way of running a case (Model Exchange, Co-Simulation, a recorded

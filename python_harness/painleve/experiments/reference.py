@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A plain reference implementation of the compliant Painleve rod with scipy's solve_ivp.
 
 What it is: the model of docs/model.md §1-2 written the way a researcher would

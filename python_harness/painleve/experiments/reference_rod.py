@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The compliant Painleve rod of docs/model.md §1-2 as a researcher would write it without
 the FMU, for painleve.experiments.reference: per mode its right-hand side and analytic Jacobian in
 numpy, its switching functions, and the rules that pick the mode after an event.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Results as strict JSON (iwc --json, validate's report, figures.json): what a NaN
 prediction or a numpy scalar becomes."""
 import json

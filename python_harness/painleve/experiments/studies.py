@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Studies over many IWC cases: convergence to the paper's limits as eps -> 0,
 and Theorem 2's separatrix located on the FMU by bisection."""
 from dataclasses import dataclass, replace

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paradox region of any body FMU (p_plus < 0, forward slip) over its configuration, from the FMU's
 own outputs: p_plus over a grid of the states it depends on (its ModelStructure dependencies, or the
 axes the user names), the curve p_plus = 0, and, in two dimensions, the configurations with the contact

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The coupled study's figure: the rod and the table over time, and the contact forces on
 both sides of the coupling (the rod's outputs, and the inputs the table held: steps, since the
 master holds each value over a communication step)."""

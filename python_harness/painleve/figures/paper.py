@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paper's figures regenerated from simulations of the FMU: the numbers
 behind each plot, with the analytic values they are to lie on.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Drawing the figures of `figures` with matplotlib: simulated points as
 markers, the paper's analytic curves as lines, written as PNG files."""
 import math

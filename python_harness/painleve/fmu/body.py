@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables.
 
 A body FMU has continuous states (whatever they are), the contact point's height `y`, slip speed

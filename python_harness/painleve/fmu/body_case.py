@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """One IWC case of any body FMU: the start it solves for, what the theory predicts from the FMU's
 coefficient outputs there (theory.general), and what the FMU does (fmu.body)."""
 import math

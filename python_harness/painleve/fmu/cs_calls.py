@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMI calls of one Co-Simulation case, in the four steps cs_fast_loop takes: reset,
 start (set-up, start values, initialization, the contact and mode there), a doStep and the
 values read after it, and the FMU's counts at the end.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Co-Simulation's fast loop: an IWC case through fmi2DoStep, the FMU integrating
 itself (its explicit pair, CVODE where the contact is stiff), the master seeing
 communication points only.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The one way the harness loads PainleveRod.fmu and runs it, on fmpy 0.3.32.
 
 An `Experiment` extracts the FMU and instantiates it once, then runs any

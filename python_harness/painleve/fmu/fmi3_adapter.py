@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An FMI 3.0 instance of PainleveRod (fmpy's FMU3Model or FMU3Slave) under the
 FMI 2.0 calls the harness makes, so that Experiment, the Co-Simulation fast loop
 and the raw-instance helpers drive either FMU alike. fmpy's simulate_fmu takes

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The internals of fmpy 0.3.32 (pinned in requirements.txt) that the Model
 Exchange loops (me_fast_loop, si_experiment) and the Co-Simulation loop's direct calls
 (cs_calls) use, and nothing else of fmpy's private code does:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Model Exchange's fast loop: an IWC case from event to event with fmpy's own
 CVode solver and no simulate_fmu around it.
 

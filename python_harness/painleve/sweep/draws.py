@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A random sweep's uniform draws, `np.random.default_rng([seed, id]).random(n)` for many ids at
 once: numpy's SeedSequence (its entropy pool of four 32-bit words, hashmix and mix) and PCG64
 (a 128-bit LCG, XSL-RR output; random() is the top 53 bits) written over arrays of ids. A

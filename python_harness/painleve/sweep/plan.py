@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Where a sweep runs and in what chunks, from what its first cases cost.
 
 A dask cluster pays only for a sweep longer than its start-up: a local cluster of

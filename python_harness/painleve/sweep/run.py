@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Sweeps of IWC cases: in this process, or on dask when that finishes sooner.
 
 Where a sweep runs, and in what chunks, is sweep.plan's: by default its first

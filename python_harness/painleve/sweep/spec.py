@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What a sweep runs: a grid or a random sample over the parameters of `Case`,
 each case known by an integer id, so any worker can rebuild any case from
 (spec, id) alone and a resumed sweep knows which cases are done.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Where a sweep's results go, written as batches finish so an interrupted
 sweep loses nothing and resumes where it stopped.
 

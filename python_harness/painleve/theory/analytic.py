@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Analytic results of Hogan & Kristiansen for the compliant Painleve rod.
 
 "On the regularization of impact without collision: the Painleve paradox and

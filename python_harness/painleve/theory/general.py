@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paper's results for any body (Hogan & Kristiansen, remark after eq Sw): everything from the
 coefficients of eq Painleve at the start state, never from the body's geometry.
 

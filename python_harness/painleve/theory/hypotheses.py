@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The hypotheses of the paper's results: a failing one raises HypothesisError naming it,
 over numpy arrays (the first failing element is named), all failures at once."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The paper's predictions for many Cases at once (a sweep's batch): analytic.predict's numbers
 with each formula evaluated once over the batch's arrays, not once a case (in numpy on scalars a
 case's prediction costs about 200 us, more than its run through the FMU)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The rigid limit eps -> 0 of impact without collision for a nonlinear compliance law.
 
 The paper (Hogan & Kristiansen) proves Theorem 1 for any normal force

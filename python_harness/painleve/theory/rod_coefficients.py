@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The rigid rod's coefficients (Hogan & Kristiansen, eq coeffs and eq Sw), the Painleve
 wedge (eqs mucrit, thetacrit), the quadrants of figure fig:GB, the fast eigenvalues of
 compressed contact (eq lambdapm: analytic's Theorem 1 and rigid_limit both start from them), and the hypotheses of

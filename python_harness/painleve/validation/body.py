@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Validation of any body FMU (`painleve validate --fmu TwoLinkArm.fmu`): at the user's configuration,
 the start found on the floor, the paradox there (p_plus < 0, Theorem 1 or 2's hypotheses), and, through
 each interface asked for, the IWC converging to the e of the FMU's own coefficients as eps falls

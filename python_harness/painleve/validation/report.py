@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The lines of a validation report (`Check`) and how they are shown: a
 terminal table, a Markdown report, and one line naming what failed."""
 from dataclasses import asdict, dataclass, field

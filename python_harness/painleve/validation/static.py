@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The checks of `validate` that need no theorem: fmpy's static validation,
 the interface contract of docs/model.md §4, and the default experiment as any FMI
 tool would run it."""

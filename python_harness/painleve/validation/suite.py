@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The validation suite for any build of PainleveRod.fmu: what a CI pipeline
 that ships the FMU runs (`painleve validate FMU`).
 

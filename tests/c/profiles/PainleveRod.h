@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the C drivers (FMI 2.0 and 3.0) and fuzz targets need to know of PainleveRod beyond
  * its modelDescription.xml (which gives them the variables, their ranges and
  * the ModelStructure): the CMake functions add_model_checks and add_fmi3_checks include it as

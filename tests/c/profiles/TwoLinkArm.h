@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the C drivers and fuzz targets need to know of TwoLinkArm beyond
  * its modelDescription.xml (see PainleveRod.h). */
 #ifndef DRIVER_PROFILE_H
