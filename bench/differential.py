@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The differential test (tests/differential/test_differential.py) at any size, off CI: random legal
 cases of every model, FMI 2.0 and 3.0, Co-Simulation at the default, a loose and a tight tolerance
 and Model Exchange under fmpy's CVode, each against its independent reference

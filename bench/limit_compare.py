@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU's Co-Simulation side by side with the single-purpose speed limit
 (../shared/perf/limit.c, outside the repository: a measuring instrument, not part of
 the project), on bench.py's 25 cases (eps = 1e-2 ... 1e-6: four IWC cases and one

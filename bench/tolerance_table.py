@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What the relative tolerance delivers: bench.py's 25 cases (eps = 1e-2 ... 1e-6, four IWC
 cases and one direct lift-off per eps) through the FMU's Co-Simulation (one fmi2DoStep per
 case from C, bench/native's painleve_native_cs) at rtol = 1e-4 ... 1e-10, the outcome at the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* When an integration has reached the end of its interval: the one rule that every path of a
  * Co-Simulation step asks (the step's loop over events and hand-overs, the explicit pair, the
  * closed-form flight, CVODE), so that none of them starts an integration towards an end it has

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """bench/limit_compare.py, on one round and one eps: its table has one row per eps with the
 columns it promises, and the two sides it times compute the same physics. The FMU's
 Co-Simulation (at the tolerance the script picks) and the single-purpose limit.c (at rtol

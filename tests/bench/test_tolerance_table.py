@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """bench/tolerance_table.py's claim, on two eps and three tolerances: the FMU's Co-Simulation (one
 fmi2DoStep per case from C) delivers its relative tolerance on the outcome at the return, against
 an independent tight reference (scipy's DOP853 at rtol 1e-12, the same model in Python). The error

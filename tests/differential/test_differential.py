@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Differential test: every model's FMU, FMI 2.0 and 3.0, Co-Simulation and Model Exchange, on
 seeded random legal cases, against references written in the tests (helpers.differential: the
 harness's event-driven rod reference, the SI rod through its scaling to it, the event-driven

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The exact runs of the differential test's issue, each against the event-driven Filippov arm
 (helpers.arm_filippov) or the rod's reference, with the FMUs run by fmpy directly
 (helpers.differential): the reference is checked first (against the issue's figures, against the

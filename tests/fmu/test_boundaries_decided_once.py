@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Contact boundaries that the motion goes on along are decided once (fmu_src/contact/contact.c's
 in_contact, contact_events.c, contact_record.c).
 

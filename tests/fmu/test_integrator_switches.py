@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every switch of Co-Simulation's integrator completes wherever the master's communication points
 fall (fmu_src/fmi/instance_step.c): the explicit pair's hand-over to CVODE in a sustained stiff
 phase, the closed-form flight's landing where the pair takes over, and the restarts at events

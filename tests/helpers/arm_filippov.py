@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An event-driven Filippov reference for the TwoLinkArm FMU with any spring k and damper c (SI),
 for the differential tests (tests/differential/): the arm of helpers.arm_lagrange, its equations
 written again with scalar math (the right-hand side runs ~1e4 times a case), integrated by

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """One Co-Simulation instance of a built FMU, FMI 2.0 or 3.0, for tests that must see every
 step's status and the FMU's event log: fmpy's calls, the doStep status taken from the FMI
 function itself (fmpy's doStep drops it), each log message kept with its status and category."""

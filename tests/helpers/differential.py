@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The differential test's machinery (tests/differential/, bench/differential.py): random legal
 cases of every model, the FMUs run by fmpy directly (its FMI 2.0 / 3.0 classes in Co-Simulation,
 fmpy.simulate_fmu's CVode in Model Exchange; none of the harness's runners), and independent

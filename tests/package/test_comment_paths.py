@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Comments describe the code as it is: every file path a comment or docstring names exists, and no
 comment in the product's code carries an issue number (history belongs in docs/ and commits).
 

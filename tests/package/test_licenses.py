@@ -153,3 +153,16 @@ def test_the_wheel_carries_the_licenses_and_its_fmus_theirs(wheel):
     assert fmus
     for name in fmus:
         check_fmu(z.read(name), f"{wheel.name}:{name}")
+
+
+def test_every_source_file_of_the_project_names_its_license():
+    """The repository's own sources (C, Python, CMake, shell), tracked by git, each carry the
+    SPDX line of LICENSE's BSD-2-Clause in their first lines."""
+    import subprocess
+    files = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True, check=True).stdout.split()
+    sources = [f for f in files if re.search(r"\.(c|h|py|cmake|sh)$|(^|/)CMakeLists\.txt$|^\.ci/run$", f)]
+    assert len(sources) > 200
+    missing = [f for f in sources
+               if "SPDX-License-Identifier: BSD-2-Clause" not in "".join((ROOT / f).read_text().splitlines(True)[:3])]
+    assert missing == []
+    assert b"BSD 2-Clause" in LICENSE or b"Redistribution and use in source and binary forms" in LICENSE

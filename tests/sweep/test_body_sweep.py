@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`painleve sweep` on a body FMU (sweep.body): the arm's grid over theta1 and mu, each row's theory
 checked against the independent numpy arm (helpers.arm_lagrange) and its simulation against Theorem 1;
 a rod option the body's sweep cannot honour is refused."""

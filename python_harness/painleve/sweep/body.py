@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A sweep of any body FMU (`painleve sweep --fmu TwoLinkArm.fmu --set theta1=-1.2:-0.8:9 --set mu=1,2`):
 a grid over start values and parameters the user names, with eps, delta, v0 and w10, each case run
 through fmu.body (its start solved onto the floor, the theory from the FMU's own coefficients) in
