@@ -119,7 +119,7 @@ def wrong_physics_fmu(tmp_path_factory):
     (for the rod (2 + alpha)/k), in the contact core's sticking field (w is the body's
     second velocity)."""
     src = tmp_path_factory.mktemp("wrong")
-    for name in ("CMakeLists.txt", "modelDescription.xml"):
+    for name in ("CMakeLists.txt", "modelDescription.xml", "LICENSE"):
         shutil.copy(ROOT / name, src / name)
     for folder in ("fmu_src", "cmake"):
         shutil.copytree(ROOT / folder, src / folder)
