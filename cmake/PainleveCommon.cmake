@@ -100,26 +100,29 @@ endfunction()
 # MODEL_SOURCES, MODEL_INCLUDE_DIRS and MODEL_HEADERS of the model in MODEL_DIR, a
 # folder of FMU_SRC_DIR/models. NAMES are its <SourceFiles> (flat, as in the source
 # FMU's sources/): each the model's own file if its folder has one, else the one of
-# the shared folders below the models (FMU_SRC_DIR/rod, FMU_SRC_DIR/contact, then FMU_SRC_DIR/fmi) that
-# has it. The include path is the model's folder, then each shared folder its sources
-# come from; the headers are those folders' (all FMI versions': a build drops the other's).
+# the shared folders (FMU_SRC_DIR/models, rod, contact, then fmi) that has it. The
+# include path is the model's folder, then each shared folder its sources come from,
+# then FMU_SRC_DIR/common (headers only, included by every layer); the headers are
+# those folders' (all FMI versions': a build drops the other's).
 function(painleve_model_sources MODEL_DIR FMU_SRC_DIR NAMES)
   set(dirs ${MODEL_DIR})
   set(sources "")
+  set(shared ${FMU_SRC_DIR}/models ${FMU_SRC_DIR}/rod ${FMU_SRC_DIR}/contact ${FMU_SRC_DIR}/fmi)
   foreach(name IN LISTS NAMES)
     set(found "")
-    foreach(dir ${MODEL_DIR} ${FMU_SRC_DIR}/rod ${FMU_SRC_DIR}/contact ${FMU_SRC_DIR}/fmi)
+    foreach(dir ${MODEL_DIR} ${shared})
       if(NOT found AND EXISTS ${dir}/${name})
         set(found ${dir})
       endif()
     endforeach()
     if(NOT found)
-      message(FATAL_ERROR "<SourceFiles> of ${MODEL_DIR} names ${name}: in neither the model's folder, "
-                          "${FMU_SRC_DIR}/rod, ${FMU_SRC_DIR}/contact nor ${FMU_SRC_DIR}/fmi")
+      message(FATAL_ERROR "<SourceFiles> of ${MODEL_DIR} names ${name}: in neither the model's folder "
+                          "nor one of ${shared}")
     endif()
     list(APPEND sources ${found}/${name})
     list(APPEND dirs ${found})
   endforeach()
+  list(APPEND dirs ${FMU_SRC_DIR}/common)
   list(REMOVE_DUPLICATES dirs)
   set(headers "")
   foreach(dir IN LISTS dirs)

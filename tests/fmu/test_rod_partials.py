@@ -12,7 +12,7 @@ from conftest import ROOT
 
 ROD = ROOT / "fmu_src" / "rod"
 CONTACT = ROOT / "fmu_src" / "contact"  # the contact core the rod runs on
-FMI = ROOT / "fmu_src" / "fmi"  # namespace.h
+COMMON = ROOT / "fmu_src" / "common"  # namespace.h
 WARNINGS = ["-Wall", "-Wextra", "-Wpedantic", "-Wshadow", "-Wconversion", "-Wno-sign-conversion", "-Werror"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all"]
 
@@ -22,7 +22,7 @@ def test_rod_partials_match_central_differences_in_every_mode(tmp_path):
     if cc is None:
         pytest.fail("no C compiler `cc` on PATH: `bash run.sh test` builds the FMU with it")
     exe = tmp_path / "rod_partials_check"
-    build = [cc, "-std=c99", "-O1", "-g", *WARNINGS, *SANITIZE, f"-I{ROD}", f"-I{CONTACT}", f"-I{FMI}", str(ROD / "rod.c"),
+    build = [cc, "-std=c99", "-O1", "-g", *WARNINGS, *SANITIZE, f"-I{ROD}", f"-I{CONTACT}", f"-I{COMMON}", str(ROD / "rod.c"),
              str(CONTACT / "contact.c"), str(CONTACT / "contact_events.c"), str(ROD / "rod_partials.c"), str(ROOT / "tests" / "c" / "rod_partials_check.c"), "-lm", "-o", str(exe)]
     r = subprocess.run(build, capture_output=True, text=True)
     assert r.returncode == 0, r.stdout + r.stderr

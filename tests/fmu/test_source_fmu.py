@@ -19,8 +19,9 @@ from conftest import ROOT
 from helpers.source_build import source_build, sundials_libraries, with_cvode
 
 FMU_SRC = ROOT / "fmu_src"
-# PainleveRod's folders, its own first, then the shared ones below it (the build's include path).
-FOLDERS = [FMU_SRC / "models" / "PainleveRod", FMU_SRC / "rod", FMU_SRC / "contact", FMU_SRC / "fmi"]
+# PainleveRod's folders, its own first, then the shared ones (the build's include path).
+FOLDERS = [FMU_SRC / "models" / "PainleveRod", FMU_SRC / "models", FMU_SRC / "rod", FMU_SRC / "contact", FMU_SRC / "fmi",
+           FMU_SRC / "common"]
 GENERATED = ROOT / "build" / "generated" / "PainleveRod"
 FMI_HEADERS = pathlib.Path(fmpy.__file__).parent / "c-code"
 OUTPUTS = ["x", "v", "y", "w", "theta", "phi", "F_N", "F_T", "energy", "mode", "contact"]

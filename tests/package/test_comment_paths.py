@@ -2,7 +2,7 @@
 """Comments describe the code as it is: every file path a comment or docstring names exists, and no
 comment in the product's code carries an issue number (history belongs in docs/ and commits).
 
-A path is a token with a folder and an extension (`fmu_src/fmi/model.h`, `tests/fmu/test_body.py`), read
+A path is a token with a folder and an extension (`fmu_src/models/model.h`, `tests/fmu/test_body.py`), read
 from Python comments and docstrings, C comments and the `#` comments of CMake and shell files. It
 exists relative to the repository's root, the commenting file's folder or one of that folder's
 parents (C sources name headers from fmu_src/, as the compiler finds them); a glob must match a

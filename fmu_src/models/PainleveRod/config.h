@@ -18,6 +18,12 @@
 #define MODEL_NX ROD_NX
 #define MODEL_NZ ROD_NZ
 
+/* The optional parts it provides (model.h): rules beyond ranges for kappa and beta,
+ * the step means F_N_mean and F_T_mean, the contact's events. */
+#define MODEL_CHECK
+#define MODEL_STEP_MEANS
+#define MODEL_EVENTS
+
 /* The rod's flight is a rigid body's under gravity: Co-Simulation advances it in closed
  * form (model.h, rod.h's RodFlight). */
 #define MODEL_CLOSED_FLIGHT

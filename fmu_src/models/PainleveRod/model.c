@@ -53,32 +53,15 @@ static void centre_velocity(const Model *m, double v_cm[2])
     v_cm[MEAN_F_T] = m->x[ROD_V] + m->x[ROD_PHI] * sin(m->x[ROD_THETA]);
 }
 
-void model_get_indicators(Model *m, double z[])
-{
-    model_update(m);
-    memcpy(z, m->z, sizeof m->z);
-}
-
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
     rod_nominals(&m->params, nominal);
-}
-
-bool model_input_set(Model *m, unsigned int vr, double time)
-{
-    (void)m, (void)vr, (void)time;   /* the rod has no inputs */
-    return false;
 }
 
 void model_step_begin(Model *m, double time)
 {
     (void)time;
     centre_velocity(m, m->step_start);   /* the momentum the step's impulses change */
-}
-
-void model_set_time(Model *m, double time)
-{
-    (void)m, (void)time;   /* the rod is autonomous */
 }
 
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])

@@ -17,6 +17,13 @@
 #define MODEL_NX ROD_NX
 #define MODEL_NZ ROD_NZ
 
+/* The optional parts it provides (model.h): a floor that moves with time and jumps
+ * when y_floor is set, the step means F_N_mean and F_T_mean, the contact's events. */
+#define MODEL_SET_TIME
+#define MODEL_INPUT_SET
+#define MODEL_STEP_MEANS
+#define MODEL_EVENTS
+
 /* In flight the rod is a rigid body under gravity and the loads F_x, F_y, tau, which a
  * Co-Simulation step holds: Co-Simulation advances it in closed form (model.h, rod.h). */
 #define MODEL_CLOSED_FLIGHT

@@ -95,11 +95,6 @@ void model_reset(Model *m)
                   .partials_stale = true };
 }
 
-const char *model_check(unsigned int vr, double value)
-{
-    return model_check_range(vr, value);
-}
-
 /* Mechanical energy in the ground's frame plus the contact spring's while it
  * pushes: 1/2 m |V_cm|^2 + 1/2 J phi^2 + m g y_cm + 1/2 k gap^2. */
 static void outputs(Model *m)
@@ -144,12 +139,6 @@ void model_update(Model *m)
     rod_event_indicators(&m->rod, m->run.mode, m->xs, m->z);
     outputs(m);
     m->stale = false;
-}
-
-void model_get_indicators(Model *m, double z[])
-{
-    model_update(m);
-    memcpy(z, m->z, sizeof m->z);
 }
 
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])

@@ -16,6 +16,11 @@
 #define MODEL_NX 2
 #define MODEL_NZ 0 /* no modes, no events */
 
+/* The optional parts it provides (model.h): a drive force that is a function of time,
+ * the step means mount_force_mean and drive_force_mean. */
+#define MODEL_SET_TIME
+#define MODEL_STEP_MEANS
+
 enum { TABLE_Z, TABLE_V };                                           /* the states */
 enum { TABLE_OUT_DRIVE, TABLE_OUT_ENERGY, TABLE_OUT_BELT_POWER, TABLE_OUT_MOUNT, TABLE_OUT_MOUNT_MEAN,
        TABLE_OUT_DRIVE_MEAN, TABLE_NOUT };                           /* derived outputs */

@@ -24,11 +24,6 @@ void model_reset(Model *m)
                   .partials_stale = true };
 }
 
-const char *model_check(unsigned int vr, double value)
-{
-    return model_check_range(vr, value);
-}
-
 /* The physics at a time and state: the drive force and the accelerations. */
 static double drive(const TableParams *p, double time)
 {
@@ -66,11 +61,6 @@ void model_update(Model *m)
 
 /* ---------------------------------------------------- continuous states */
 
-void model_get_indicators(Model *m, double z[])
-{
-    (void)m, (void)z;   /* none */
-}
-
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
     /* modelDescription.xml's nominals: a table shaken by some mm at some Hz
@@ -79,12 +69,6 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     (void)m;
     nominal[TABLE_Z] = 1e-4;
     nominal[TABLE_V] = 1e-2;
-}
-
-bool model_input_set(Model *m, unsigned int vr, double time)
-{
-    (void)m, (void)vr, (void)time;   /* the loads are held as set */
-    return false;
 }
 
 void model_step_begin(Model *m, double time)
@@ -103,11 +87,6 @@ void model_set_time(Model *m, double time)
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     derivatives(m, time, x, dx);
-}
-
-void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
-{
-    (void)m, (void)time, (void)x, (void)z;   /* none */
 }
 
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
@@ -148,31 +127,11 @@ void model_step_end(Model *m, double elapsed)
 
 /* ------------------------------------------------------- modes, events */
 
-void model_decide_initial_mode(Model *m)
-{
-    (void)m;   /* no modes */
-}
-
 void model_start(Model *m, double time, char *text, size_t size)
 {
     (void)time;   /* no modes, no event record */
     snprintf(text, size, "table starts at position = %g m, velocity = %g m/s (no modes)", m->x[TABLE_Z],
              m->x[TABLE_V]);
-}
-
-void model_begin_integration(Model *m)
-{
-    (void)m;   /* no event log to refer to */
-}
-
-/* The table never switches: an event (an input that jumped) changes nothing
- * of its own, and integration restarts from the same state. */
-bool model_event_update(Model *m, double time, ModelEvent *e)
-{
-    (void)m;
-    e->states_changed = e->switched = false;
-    snprintf(e->text, sizeof e->text, "t = %.17g: no modes to update", time);
-    return true;
 }
 
 /* ------------------------------------------------ partial derivatives */

@@ -89,11 +89,6 @@ void model_reset(Model *m)
                   .partials_stale = true };
 }
 
-const char *model_check(unsigned int vr, double value)
-{
-    return model_check_range(vr, value);
-}
-
 /* The tip in SI, the forces (M g), the energy (M g L) and the scaled coefficients. */
 static void outputs(Model *m, const Contact *c)
 {
@@ -124,12 +119,6 @@ void model_update(Model *m)
     m->stale = false;
 }
 
-void model_get_indicators(Model *m, double z[])
-{
-    model_update(m);
-    memcpy(z, m->z, sizeof m->z);
-}
-
 /* The core's nominals (angles eps^2, scaled rates eps), the rates in rad/s. */
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
@@ -139,22 +128,6 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     arm_body.nominals(&b, law.epsilon, nominal);
     nominal[ARM_OMEGA1] /= time_unit(m);
     nominal[ARM_OMEGA2] /= time_unit(m);
-}
-
-bool model_input_set(Model *m, unsigned int vr, double time)
-{
-    (void)m, (void)vr, (void)time;   /* the arm has no inputs */
-    return false;
-}
-
-void model_step_begin(Model *m, double time)
-{
-    (void)m, (void)time;   /* no step means */
-}
-
-void model_set_time(Model *m, double time)
-{
-    (void)m, (void)time;   /* the arm is autonomous */
 }
 
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
@@ -187,13 +160,6 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
         for (int j = 0; j < ARM_NX; ++j)
             J[i][j] = i >= ARM_OMEGA1 ? rate * Js[i * ARM_NX + j] * (j >= ARM_OMEGA1 ? T : 1.0) : 0.0;
     J[ARM_THETA1][ARM_OMEGA1] = J[ARM_THETA2][ARM_OMEGA2] = 1;
-}
-
-/* ------------------------------------------- step means (Co-Simulation) */
-
-void model_step_end(Model *m, double elapsed)
-{
-    (void)m, (void)elapsed;   /* the arm outputs no step means */
 }
 
 /* ------------------------------------------------------- modes, events */
@@ -242,14 +208,6 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     unscale_changes(m, xs);
     model_touch(m);
     return ok;
-}
-
-/* ------------------------------------------------ partial derivatives */
-
-const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
-{
-    (void)m, (void)unknown, (void)known, (void)value;
-    return MODEL_NO_PARTIALS;   /* never asked: model_common.c answers every pair with it */
 }
 
 /* ------------------------------------------------------ FMU state fields */

@@ -15,6 +15,9 @@
 #define MODEL_NX ARM_NX
 #define MODEL_NZ CONTACT_NZ
 
+/* The optional part it provides (model.h): the contact's events. */
+#define MODEL_EVENTS
+
 /* No analytic partial derivatives yet (providesDirectionalDerivative="false" in the XML):
  * fmi2GetDirectionalDerivative and its FMI 3.0 twins answer this error. */
 #define MODEL_NO_PARTIALS "TwoLinkArm provides no directional derivatives (providesDirectionalDerivative = false)"

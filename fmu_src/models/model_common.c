@@ -2,12 +2,22 @@
 /* What every model shares, made once from its config.h: the table of its
  * variables (MODEL_VARIABLES), a variable's field read and written, the fields
  * an FMU state holds, the accessors of the states and of what the model
- * derives from them (model.h: the Model's x, dx, stale, partials_stale and its
- * model_update), and the partial derivatives every model has. */
+ * derives from them (model.h: the Model's x, dx, z, stale, partials_stale and
+ * its model_update), the partial derivatives every model has, and the default
+ * of each optional part a model's config.h does not claim (model.h). */
 #include "model.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
+
+/* A model with events has indicators and one without has none (C99 has no static
+ * assertion: a negative array size stops the build). */
+#ifdef MODEL_EVENTS
+typedef char model_events_have_indicators[(MODEL_NZ) > 0 ? 1 : -1];
+#else
+typedef char model_without_events_has_no_indicators[(MODEL_NZ) == 0 ? 1 : -1];
+#endif
 
 #define MODEL_INFO(id, name, type, kind, field, min, max) [VR_##id] = { name, TYPE_##type, KIND_##kind, min, max },
 static const VariableInfo VARIABLES[VR_COUNT] = { MODEL_VARIABLES(MODEL_INFO) };
@@ -112,6 +122,79 @@ void model_get_derivatives(Model *m, double dx[MODEL_NX])
     memcpy(dx, m->dx, sizeof m->dx);
 }
 
+void model_get_indicators(Model *m, double z[])
+{
+#ifdef MODEL_EVENTS
+    model_update(m);
+    memcpy(z, m->z, sizeof m->z);
+#else
+    (void)m, (void)z;
+#endif
+}
+
+/* ------------------------------------------- defaults of the optional parts */
+
+#ifndef MODEL_CHECK
+const char *model_check(unsigned int vr, double value)
+{
+    return model_check_range(vr, value);
+}
+#endif
+
+#ifndef MODEL_SET_TIME
+void model_set_time(Model *m, double time)
+{
+    (void)m, (void)time;   /* an autonomous model */
+}
+#endif
+
+#ifndef MODEL_INPUT_SET
+bool model_input_set(Model *m, unsigned int vr, double time)
+{
+    (void)m, (void)vr, (void)time;   /* an input is its value alone */
+    return false;
+}
+#endif
+
+#ifndef MODEL_STEP_MEANS
+void model_step_begin(Model *m, double time)
+{
+    (void)m, (void)time;
+}
+
+void model_step_end(Model *m, double elapsed)
+{
+    (void)m, (void)elapsed;
+}
+#endif
+
+#ifndef MODEL_EVENTS
+void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
+{
+    (void)m, (void)time, (void)x, (void)z;
+}
+
+void model_decide_initial_mode(Model *m)
+{
+    (void)m;
+}
+
+void model_begin_integration(Model *m)
+{
+    (void)m;
+}
+
+/* No modes: an event (an input that jumped) changes nothing of the model's own,
+ * and integration restarts from the same state. */
+bool model_event_update(Model *m, double time, ModelEvent *e)
+{
+    (void)m;
+    e->states_changed = e->switched = false;
+    snprintf(e->text, sizeof e->text, "t = %.17g: no modes to update", time);
+    return true;
+}
+#endif
+
 /* ------------------------------------------------------ FMU state fields */
 
 const char *model_implausible(const Model *m)
@@ -125,14 +208,17 @@ const char *model_implausible(const Model *m)
 
 /* ------------------------------------------------------ partial derivatives */
 
+#ifdef MODEL_NO_PARTIALS
+/* A model without partial derivatives (its description: providesDirectionalDerivative="false")
+ * answers none, not even a known's own. */
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
 {
-#ifdef MODEL_NO_PARTIALS
-    /* A model without partial derivatives (its description: providesDirectionalDerivative="false")
-     * answers none, not even a known's own. */
     (void)m, (void)unknown, (void)known, (void)value;
     return MODEL_NO_PARTIALS;
-#endif
+}
+#else
+const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value)
+{
     const VariableInfo *u = model_variable(unknown), *k = model_variable(known);
     if (!u || u->type != TYPE_REAL) return "the unknown is not a Real variable";
     if (!k || !model_settable(k)) return "the known is neither a state, an input nor a parameter";
@@ -142,3 +228,4 @@ const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned in
     }
     return model_calculated_partial(m, unknown, known, value);
 }
+#endif

@@ -1,8 +1,28 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
-/* The model interface: everything a model provides to the FMI layers that sit
- * on it, in the way of the Reference-FMUs. An FMI file calls only these
- * functions and knows no state, mode or physics; the model knows no FMI.
- * The model's own metadata and data (config.h) fill in the constants. */
+/* The model interface: everything a model provides to the FMI layer above it, in
+ * the way of the Reference-FMUs. An FMI file calls only these functions and knows
+ * no state, mode or physics; a model knows no FMI. The model's own metadata and
+ * data (its config.h) fill in the constants and the type Model.
+ *
+ * A model's files hold only what is special to it. model_common.c gives every model
+ * what follows from its variable list, and the default of each optional part that
+ * the model's config.h does not claim. A config.h that defines
+ *   MODEL_CHECK          provides model_check (rules beyond the variables' ranges);
+ *                        default: the range check alone, model_check_range;
+ *   MODEL_SET_TIME       provides model_set_time (a model driven by time);
+ *                        default: an autonomous model, which ignores the time;
+ *   MODEL_INPUT_SET      provides model_input_set (an input whose set changes the
+ *                        trajectory beyond its value); default: none does;
+ *   MODEL_STEP_MEANS     provides model_step_begin and model_step_end (outputs that
+ *                        are means over a Co-Simulation step); default: none;
+ *   MODEL_EVENTS         has event indicators (MODEL_NZ > 0, the Model's z[MODEL_NZ],
+ *                        which model_update fills) and provides model_indicators_at,
+ *                        model_decide_initial_mode, model_begin_integration and
+ *                        model_event_update; default: no indicators and no modes;
+ *   MODEL_CLOSED_FLIGHT  provides the model_flight_* functions (below); default: none;
+ *   MODEL_NO_PARTIALS    (a message) has no partial derivatives, and provides no
+ *                        model_calculated_partial.
+ * Every other function below a model provides, except those model_common.c defines. */
 #ifndef MODEL_H
 #define MODEL_H
 
@@ -10,6 +30,7 @@
 #include <stddef.h>
 
 #include "model_event.h"
+#include "namespace.h" /* every source includes this header: their names, prefixed */
 
 /* The model's own metadata: its directory comes first on the include path
  * (painleve_model_sources, cmake/PainleveCommon.cmake), so each model built on
@@ -49,7 +70,7 @@ bool model_settable(const VariableInfo *info);
 /* The start values of every variable: a new model. */
 void model_reset(Model *m);
 
-/* NULL when value is allowed for settable variable vr, else why not. */
+/* NULL when value is allowed for settable variable vr, else why not (optional: MODEL_CHECK). */
 const char *model_check(unsigned int vr, double value);
 
 /* Sets a settable variable (checked before); values travel as double
@@ -80,26 +101,30 @@ unsigned int model_state_vr(size_t i);
 void model_get_states(const Model *m, double x[MODEL_NX]);
 void model_set_states(Model *m, const double x[MODEL_NX]);
 void model_get_derivatives(Model *m, double dx[MODEL_NX]);
-void model_get_indicators(Model *m, double z[]);
+void model_get_indicators(Model *m, double z[]);   /* model_common.c: the Model's z (MODEL_EVENTS) */
 void model_get_nominals(const Model *m, double nominal[MODEL_NX]);
 
 /* Input vr was set at `time` (after model_set). True if the set changed the
  * model's trajectory beyond the value itself (a Co-Simulation step must then
- * restart its integrator), as when an input starts a new interpolation. */
+ * restart its integrator), as when an input starts a new interpolation
+ * (optional: MODEL_INPUT_SET). */
 bool model_input_set(Model *m, unsigned int vr, double time);
 
 /* A Co-Simulation step begins at `time`: a model whose inputs it interpolates
- * between communication points starts doing so. (Model Exchange never calls it:
- * there the master gives the inputs at every time.) */
+ * between communication points starts doing so, one with step means takes what
+ * they start from. (Model Exchange never calls it: there the master gives the
+ * inputs at every time.) Optional: MODEL_STEP_MEANS. */
 void model_step_begin(Model *m, double time);
 
 /* The time the getters above evaluate at (the instance's; a model driven by
- * time, such as a harmonic force, needs it; an autonomous one ignores it). */
+ * time, such as a harmonic force, needs it; an autonomous one ignores it).
+ * Optional: MODEL_SET_TIME. */
 void model_set_time(Model *m, double time);
 
 /* The current mode's right-hand side, indicators and d der(x)/d x at a trial
  * time and state x, for an embedded integrator; the model is not changed.
- * (Indicator arrays are [] : a model may have none.) */
+ * (Indicator arrays are [] : a model may have none; model_indicators_at is
+ * optional: MODEL_EVENTS.) */
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX]);
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[]);
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX]);
@@ -132,12 +157,14 @@ double model_flight_sample_step(const ModelFlight *f, double t);
  * force whose impulse a coupled model must receive whatever the contact's
  * duration) takes them from its own balances over the step. Model Exchange
  * never calls it: there, where the importer's integrator owns the steps, a
- * step mean is the quantity now (the mean over a step shrunk to an instant). */
+ * step mean is the quantity now (the mean over a step shrunk to an instant).
+ * Optional: MODEL_STEP_MEANS. */
 void model_step_end(Model *m, double elapsed);
 
 /* ------------------------------------------------------- modes, events */
 
-/* The initial mode, decided from the state alone (initialization mode). */
+/* The initial mode, decided from the state alone (initialization mode).
+ * Optional, with model_begin_integration and model_event_update: MODEL_EVENTS. */
 void model_decide_initial_mode(Model *m);
 
 /* Initialization ends at `time`: the initial mode, the event record reset;
@@ -165,7 +192,9 @@ bool model_event_update(Model *m, double time, ModelEvent *e);
 const char *model_partial_derivative(Model *m, unsigned int unknown, unsigned int known, double *value);
 
 /* The model's own part of model_partial_derivative: d unknown / d known for a
- * calculated unknown (not a settable or discrete variable) and a settable known. */
+ * calculated unknown (not a settable or discrete variable) and a settable known;
+ * NULL on success, else why the pair has none (a variable the model does not know
+ * is such an error, never another variable's value). Not with MODEL_NO_PARTIALS. */
 const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value);
 
 /* ------------------------------------------------------ FMU state fields */
