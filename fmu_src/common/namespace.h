@@ -50,20 +50,10 @@
 #define rod_coefficient_outputs NAMESPACED(rod_coefficient_outputs)
 #define rod_coeffs NAMESPACED(rod_coeffs)
 #define rod_contact NAMESPACED(rod_contact)
-#define rod_derivatives NAMESPACED(rod_derivatives)
-#define rod_energy NAMESPACED(rod_energy)
 #define rod_flight NAMESPACED(rod_flight)
 #define rod_flight_at NAMESPACED(rod_flight_at)
 #define rod_flight_sample_step NAMESPACED(rod_flight_sample_step)
-#define rod_event_indicators NAMESPACED(rod_event_indicators)
-#define rod_force_bracket NAMESPACED(rod_force_bracket)
-#define rod_compliance NAMESPACED(rod_compliance)
-#define rod_spring_energy NAMESPACED(rod_spring_energy)
-#define rod_friction_force NAMESPACED(rod_friction_force)
 #define rod_jacobian NAMESPACED(rod_jacobian)
-#define rod_move_off_surfaces NAMESPACED(rod_move_off_surfaces)
-#define rod_nominals NAMESPACED(rod_nominals)
-#define rod_normal_force NAMESPACED(rod_normal_force)
 #define rod_partials NAMESPACED(rod_partials)
 
 /* fmu_src/models/TwoLinkArm/arm_body.c: the arm, the core's second body */
@@ -73,7 +63,7 @@
 /* fmu_src/models/PainleveRodSI/rod_si_partials.c */
 #define si_partial NAMESPACED(si_partial)
 
-/* model.c: the model interface */
+/* model.h: the model interface (model_common.c and each model's own files) */
 #define model_assign NAMESPACED(model_assign)
 #define model_begin_integration NAMESPACED(model_begin_integration)
 #define model_calculated_partial NAMESPACED(model_calculated_partial)

@@ -104,66 +104,6 @@ void rod_coefficient_outputs(const RodParams *p, const double x[ROD_NX], double 
     out[ROD_OUT_S_W] = k.S_w;
 }
 
-/* ------------------------------------------- the core on the rod */
-
-RodCompliance rod_compliance(const RodParams *p, double y, double w)
-{
-    const Contact c = rod_contact(p);
-    return contact_compliance(&c.law, y, w);
-}
-
-double rod_force_bracket(const RodParams *p, const double x[ROD_NX])
-{
-    return rod_compliance(p, x[ROD_Y], x[ROD_W]).h;
-}
-
-double rod_spring_energy(const RodParams *p, double y)
-{
-    const Contact c = rod_contact(p);
-    return contact_spring_energy(&c.law, y);
-}
-
-double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
-{
-    const Contact c = rod_contact(p);
-    return contact_normal_force(&c, m, x);
-}
-
-double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX])
-{
-    const Contact c = rod_contact(p);
-    return contact_friction_force(&c, m, x);
-}
-
-double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX])
-{
-    const Contact c = rod_contact(p);
-    return contact_energy(&c, m, x);
-}
-
-void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX])
-{
-    const Contact c = rod_contact(p);
-    contact_derivatives(&c, m, x, dx);
-}
-
-void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ])
-{
-    const Contact c = rod_contact(p);
-    contact_event_indicators(&c, m, x, z);
-}
-
-void rod_nominals(const RodParams *p, double nominal[ROD_NX])
-{
-    rod_body_nominals(p, p->epsilon, nominal);
-}
-
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved)
-{
-    const Contact c = rod_contact(p);
-    return contact_move_off_surfaces(&c, m, x, (ContactSurfaces){ 0 }, margin, moved);
-}
-
 /* ------------------------------------------- the free flight in closed form */
 
 RodFlight rod_flight(double length, double ax, double ay, double angular, double t0, const double x0[ROD_NX])
@@ -217,7 +157,7 @@ double rod_flight_sample_step(const RodFlight *f, double t)
 
 /* ------------------------------------------- the rod's analytic Jacobian */
 
-static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
+static bool sticking(ContactMode m) { return m.contact && m.slip == 0; }
 
 /* How a and F_N enter the mode's right-hand side:
  *   v' = a + g.v F_N (0 while sticking),  w' = b + g.w_a a + g.w F_N,
@@ -236,7 +176,7 @@ static bool sticking(RodMode m) { return m.contact && m.slip == 0; }
  * damper works. */
 typedef struct { double v, w, phi, w_a, phi_a; } ModeGains;
 
-static ModeGains mode_gains(const RodCoeffs *k, RodMode m)
+static ModeGains mode_gains(const RodCoeffs *k, ContactMode m)
 {
     if (sticking(m)) return (ModeGains){ 0, k->S_w, k->S_phi, k->A_w, k->A_phi };  /* exact Filippov */
     if (m.slip >= 0) return (ModeGains){ k->q_plus, k->p_plus, k->c_plus, 0, 0 };  /* eq PainleveEqs */
@@ -264,15 +204,16 @@ static RodCoeffs coeffs_dtheta(const RodParams *p, double theta, double phi)
     return d;
 }
 
-void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX])
+void rod_jacobian(const RodParams *p, ContactMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX])
 {
     const double th = x[ROD_THETA], phi = x[ROD_PHI], eps = p->epsilon;
     const RodCoeffs k = rod_coeffs(p, th, phi), dk = coeffs_dtheta(p, th, phi);
-    const double F = rod_normal_force(p, m, x);
+    const Contact c = rod_contact(p);
+    const double F = contact_normal_force(&c, m, x);
     const double a_phi = -2 * phi * cos(th);     /* da/dphi; db/dphi = 2 phi sin */
     /* F = h(y/eps, w)/eps in contact: dF/dy = h_yh/eps^2, dF/dw = h_w/eps
      * (-1/eps^2 and -delta/eps for the linear law) */
-    const RodCompliance h = rod_compliance(p, x[ROD_Y], x[ROD_W]);
+    const Compliance h = contact_compliance(&c.law, x[ROD_Y], x[ROD_W]);
     const double F_y = m.contact ? h.h_yh / (eps * eps) : 0, F_w = m.contact ? h.h_w / eps : 0;
     for (int i = 0; i < ROD_NX; ++i)
         for (int j = 0; j < ROD_NX; ++j) J[i][j] = 0;

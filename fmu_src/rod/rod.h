@@ -3,11 +3,11 @@
  *
  * The rod is the contact core's first body (contact.h, docs/general_body.md): its
  * generalized coordinates are the contact end's (x, y) and theta, so v and w are
- * states. This header keeps the rod's closed forms (eq coeffs, eq Sw), its analytic
- * Jacobian, and the rod-named entry points that PainleveRod, PainleveRodSI and
- * rod_partials.c call: each runs the core on the rod body. Every function is pure
- * apart from rod_event_update, which may move the state off a switching surface;
- * nothing here keeps global state. */
+ * states. rod_contact gives the core on the rod, which PainleveRod, PainleveRodSI and
+ * rod_partials.c call for the forces, modes, indicators and events (contact_*). This
+ * header keeps what only the rod has: its closed forms (eq coeffs, eq Sw), its analytic
+ * Jacobian and its free flight in closed form. Every function is pure; nothing here
+ * keeps global state. */
 #ifndef ROD_H
 #define ROD_H
 
@@ -15,12 +15,25 @@
 
 #include "contact.h"
 
-/* Continuous states, in the order of modelDescription.xml. */
+/* Continuous states, in the order of modelDescription.xml (its event indicators are
+ * the core's, CONTACT_Z_*). */
 enum { ROD_X, ROD_V, ROD_Y, ROD_W, ROD_THETA, ROD_PHI, ROD_NX };
 
-/* Event indicators: the core's (contact.c). */
-enum { ROD_Z_Y = CONTACT_Z_Y, ROD_Z_FORCE = CONTACT_Z_FORCE, ROD_Z_SLIP = CONTACT_Z_SLIP, ROD_Z_AUX = CONTACT_Z_AUX,
-       ROD_NZ = CONTACT_NZ };
+/* A rod model's continuous states (its Model's x, within +-BOUND) and their
+ * derivatives (dx), for its config.h list, in the order above. */
+#define ROD_STATE_VARIABLES(VARIABLE, BOUND)                                                       \
+    VARIABLE(X, "x", REAL, STATE, x[ROD_X], -(BOUND), BOUND)                                       \
+    VARIABLE(V, "v", REAL, STATE, x[ROD_V], -(BOUND), BOUND)                                       \
+    VARIABLE(Y, "y", REAL, STATE, x[ROD_Y], -(BOUND), BOUND)                                       \
+    VARIABLE(W, "w", REAL, STATE, x[ROD_W], -(BOUND), BOUND)                                       \
+    VARIABLE(THETA, "theta", REAL, STATE, x[ROD_THETA], -(BOUND), BOUND)                           \
+    VARIABLE(PHI, "phi", REAL, STATE, x[ROD_PHI], -(BOUND), BOUND)                                 \
+    VARIABLE(DER_X, "der(x)", REAL, CALCULATED, dx[ROD_X], 0, 0)                                   \
+    VARIABLE(DER_V, "der(v)", REAL, CALCULATED, dx[ROD_V], 0, 0)                                   \
+    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ROD_Y], 0, 0)                                   \
+    VARIABLE(DER_W, "der(w)", REAL, CALCULATED, dx[ROD_W], 0, 0)                                   \
+    VARIABLE(DER_THETA, "der(theta)", REAL, CALCULATED, dx[ROD_THETA], 0, 0)                       \
+    VARIABLE(DER_PHI, "der(phi)", REAL, CALCULATED, dx[ROD_PHI], 0, 0)
 
 /* Algebraic outputs: the forces, the energy, and the coefficients of eq Painleve and
  * eq Sw at the current state (RodCoeffs's a, b, p_+-, q_+-, S_w), which tell a user where
@@ -42,8 +55,6 @@ typedef struct {
     double f_x, f_y, tau;
 } RodParams;
 
-typedef ContactMode RodMode;
-
 /* The contact core on the rod with parameters p (p must outlive it). */
 Contact rod_contact(const RodParams *p);
 
@@ -63,46 +74,9 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi);
  * (any mode: they are the body's, not the mode's); eq coeffs and eq Sw to round-off. */
 void rod_coefficient_outputs(const RodParams *p, const double x[ROD_NX], double out[ROD_NOUT]);
 
-/* The compliance law of contact.h (contact_compliance) with the rod's parameters. */
-typedef Compliance RodCompliance;
-
-RodCompliance rod_compliance(const RodParams *p, double y, double w);
-
-/* h(y/eps, w): the bracket of eq FN (g = -y/eps - delta w for the linear law). */
-double rod_force_bracket(const RodParams *p, const double x[ROD_NX]);
-
-/* Energy held by the contact spring at height y: the integral of its force
- * -yh + kappa d^2 over the penetration, d^2/2 + kappa d^3/3 with d = -y/eps. */
-double rod_spring_energy(const RodParams *p, double y);
-
-/* F_N of the current mode: smooth (linear) while in contact, 0 otherwise. */
-double rod_normal_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
-
-/* F_T: s mu F_N while slipping, the force that keeps v' = 0 while sticking. */
-double rod_friction_force(const RodParams *p, RodMode m, const double x[ROD_NX]);
-
-/* Mechanical energy plus the spring's while the contact force acts, in units
- * of m g l. */
-double rod_energy(const RodParams *p, RodMode m, const double x[ROD_NX]);
-
-void rod_derivatives(const RodParams *p, RodMode m, const double x[ROD_NX], double dx[ROD_NX]);
-
-/* J[i][j] = d dx_i / d x_j of the current mode's smooth right-hand side. */
-void rod_jacobian(const RodParams *p, RodMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX]);
-
-void rod_event_indicators(const RodParams *p, RodMode m, const double x[ROD_NX], double z[ROD_NZ]);
-
-/* Nominal magnitudes: the contact's own scales y ~ eps^2, w ~ eps. */
-void rod_nominals(const RodParams *p, double nominal[ROD_NX]);
-
-/* contact_move_off_surfaces on the rod: moves x off every switching surface on which an
- * indicator of mode m is 0 to within `margin` times its rounding error, towards the side mode m lives
- * on and past that, so that no importer restarts integration on a root.
- * margin >= 1: 1 at a first event; larger where the importer's solver came
- * straight back to the surface (its error exceeded the move). Sets *moved if
- * x changed; returns false if a surface could not be left by a step below the
- * state's nominal. */
-bool rod_move_off_surfaces(const RodParams *p, RodMode m, double x[ROD_NX], double margin, bool *moved);
+/* J[i][j] = d dx_i / d x_j of mode m's smooth right-hand side (contact_derivatives on
+ * rod_contact(p)). */
+void rod_jacobian(const RodParams *p, ContactMode m, const double x[ROD_NX], double J[ROD_NX][ROD_NX]);
 
 /* The rod in free flight (no contact force) under constant loads, in closed form: its
  * centre of mass moves at the constant acceleration (ax, ay), the rod turns at the constant

@@ -30,13 +30,14 @@
  * F_eps = 2 y/eps^3 + delta w/eps^2.) */
 typedef struct { double F, y, w, delta, eps, kappa, beta; } NormalForce;
 
-static NormalForce normal_force(const RodParams *p, RodMode m, const double x[ROD_NX])
+static NormalForce normal_force(const RodParams *p, ContactMode m, const double x[ROD_NX])
 {
     if (!m.contact) return (NormalForce){ 0, 0, 0, 0, 0, 0, 0 };
     const double eps = p->epsilon, y = x[ROD_Y], w = x[ROD_W];
-    const RodCompliance h = rod_compliance(p, y, w);
+    const Contact c = rod_contact(p);
+    const Compliance h = contact_compliance(&c.law, y, w);
     const double d = y < 0 ? -y / eps : 0.0;
-    return (NormalForce){ rod_normal_force(p, m, x),
+    return (NormalForce){ contact_normal_force(&c, m, x),
                           h.h_yh / (eps * eps),
                           h.h_w / eps,
                           -w * (1 + p->beta * d) / eps,
@@ -49,7 +50,7 @@ static NormalForce normal_force(const RodParams *p, RodMode m, const double x[RO
  * phi' = phi_a a + phi F) change with alpha and with mu. */
 typedef struct { double v, w, phi, w_a, phi_a; } Gains;
 
-static void gains_dp(const RodParams *p, RodMode m, double theta, Gains *d_alpha, Gains *d_mu)
+static void gains_dp(const RodParams *p, ContactMode m, double theta, Gains *d_alpha, Gains *d_mu)
 {
     const double sn = sin(theta), cs = cos(theta), al = p->alpha, mu = p->mu;
     const double k = 1 + al * sn * sn;
@@ -69,7 +70,7 @@ static void gains_dp(const RodParams *p, RodMode m, double theta, Gains *d_alpha
 }
 
 /* The gains themselves (the same selection as rod.c's mode_gains). */
-static Gains gains(const RodCoeffs *c, RodMode m)
+static Gains gains(const RodCoeffs *c, ContactMode m)
 {
     if (m.contact && m.slip == 0) return (Gains){ 0, c->S_w, c->S_phi, c->A_w, c->A_phi };
     if (m.slip >= 0) return (Gains){ c->q_plus, c->p_plus, c->c_plus, 0, 0 };
@@ -79,7 +80,7 @@ static Gains gains(const RodCoeffs *c, RodMode m)
 /* d(state derivatives)/d(parameters):
  *   d rhs/dP = (d gain/dP)(a or F) + gain dF/dP,
  * plus, for alpha, the torque's terms: da/dalpha = -sn tau, db/dalpha = -cs tau, and phi' = ... + al tau. */
-static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX], double dx_p[ROD_NX][ROD_NP])
+static void derivatives_dp(const RodParams *p, ContactMode m, const double x[ROD_NX], double dx_p[ROD_NX][ROD_NP])
 {
     const RodCoeffs c = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
     const Gains g = gains(&c, m);
@@ -115,7 +116,7 @@ static void derivatives_dp(const RodParams *p, RodMode m, const double x[ROD_NX]
 
 /* d(state derivatives)/d(loads): da/d(f_x, f_y, tau) = (1, 0, -al sn), db/d(.) = (0, 1, -al cs),
  * and phi' holds al tau itself. */
-static void derivatives_dl(const RodParams *p, RodMode m, const double x[ROD_NX], double dx_l[ROD_NX][ROD_NL])
+static void derivatives_dl(const RodParams *p, ContactMode m, const double x[ROD_NX], double dx_l[ROD_NX][ROD_NL])
 {
     const RodCoeffs c = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
     const Gains g = gains(&c, m);
@@ -129,8 +130,8 @@ static void derivatives_dl(const RodParams *p, RodMode m, const double x[ROD_NX]
     }
 }
 
-/* F_N = F (rod_normal_force). */
-static void normal_force_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+/* F_N = F (contact_normal_force). */
+static void normal_force_partials(const RodParams *p, ContactMode m, const double x[ROD_NX], double d_x[ROD_NX],
                                   double d_p[ROD_NP])
 {
     const NormalForce F = normal_force(p, m, x);
@@ -142,13 +143,13 @@ static void normal_force_partials(const RodParams *p, RodMode m, const double x[
     d_p[ROD_P_BETA] = F.beta;
 }
 
-/* F_T (rod_friction_force): 0 in flight; sg mu F while slipping; while
+/* F_T (contact_friction_force): 0 in flight; sg mu F while slipping; while
  * sticking the force that holds v' = 0, F_T = (a + al sn cs F)/k, whence
  *   dF_T/dtheta = (phi^2 sn - al cs tau + al (cs^2 - sn^2) F)/k - F_T (2 al sn cs)/k,
  *   dF_T/dphi = -2 phi cs/k,  dF_T/d(y, w, delta, eps) = al sn cs dF/d(.)/k,
  *   dF_T/dalpha = (sn cs F - sn tau - F_T sn^2)/k,  dF_T/dmu = 0,
  *   dF_T/d(f_x, f_y, tau) = (1, 0, -al sn)/k. */
-static void friction_force_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+static void friction_force_partials(const RodParams *p, ContactMode m, const double x[ROD_NX], double d_x[ROD_NX],
                                     double d_p[ROD_NP], double d_l[ROD_NL])
 {
     if (!m.contact) return;
@@ -166,7 +167,8 @@ static void friction_force_partials(const RodParams *p, RodMode m, const double 
     }
     const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha;
     const double sn = sin(th), cs = cos(th), k = 1 + al * sn * sn, ssc = al * sn * cs / k;
-    const double FT = rod_friction_force(p, m, x);
+    const Contact c = rod_contact(p);
+    const double FT = contact_friction_force(&c, m, x);
     d_x[ROD_THETA] = (phi * phi * sn - al * cs * p->tau + al * (cs * cs - sn * sn) * F.F) / k - FT * 2 * al * sn * cs / k;
     d_x[ROD_PHI] = -2 * phi * cs / k;
     d_x[ROD_Y] = ssc * F.y;
@@ -180,13 +182,13 @@ static void friction_force_partials(const RodParams *p, RodMode m, const double 
     d_p[ROD_P_BETA] = ssc * F.beta;
 }
 
-/* energy (rod_energy) = (Xd^2 + Yd^2)/2 + phi^2/(2 al) + y + sn [+ S(d) in contact],
+/* energy (contact_energy) = (Xd^2 + Yd^2)/2 + phi^2/(2 al) + y + sn [+ S(d) in contact],
  * Xd = v + phi sn, Yd = w + phi cs (the centre of mass's velocity, eq coord), and the
  * spring's S(d) = d^2/2 + kappa dp^3/3, d = -y/eps, dp = max(d, 0), S'(d) = d + kappa dp^2:
  *   dE/dv = Xd, dE/dw = Yd, dE/dy = 1 [- S'(d)/eps],
  *   dE/dtheta = phi (Xd cs - Yd sn) + cs, dE/dphi = Xd sn + Yd cs + phi/al,
  *   dE/dalpha = -phi^2/(2 al^2), dE/deps = [S'(d) y/eps^2], dE/dkappa = [dp^3/3]. */
-static void energy_partials(const RodParams *p, RodMode m, const double x[ROD_NX], double d_x[ROD_NX],
+static void energy_partials(const RodParams *p, ContactMode m, const double x[ROD_NX], double d_x[ROD_NX],
                             double d_p[ROD_NP])
 {
     const double th = x[ROD_THETA], phi = x[ROD_PHI], y = x[ROD_Y], eps = p->epsilon, al = p->alpha;
@@ -234,7 +236,7 @@ static void coefficient_partials(const RodParams *p, const double x[ROD_NX], Rod
     dp[ROD_OUT_S_W][ROD_P_ALPHA] = cs * cs / (k * k);
 }
 
-void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d)
+void rod_partials(const RodParams *p, ContactMode m, const double x[ROD_NX], RodPartials *d)
 {
     memset(d, 0, sizeof *d);   /* every pair not written below is structurally 0 */
     rod_jacobian(p, m, x, d->dx_x);

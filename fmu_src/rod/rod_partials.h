@@ -17,6 +17,6 @@ typedef struct {
     double out_x[ROD_NOUT][ROD_NX], out_p[ROD_NOUT][ROD_NP], out_l[ROD_NOUT][ROD_NL];
 } RodPartials;
 
-void rod_partials(const RodParams *p, RodMode m, const double x[ROD_NX], RodPartials *d);
+void rod_partials(const RodParams *p, ContactMode m, const double x[ROD_NX], RodPartials *d);
 
 #endif

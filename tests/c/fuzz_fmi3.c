@@ -59,9 +59,9 @@ static Bytes in;
 /* Mostly the model description's value references (event indicators and time too), sometimes far out. */
 static fmi3ValueReference take_vr(void)
 {
-    static const fmi3ValueReference FAR[] = { VR_COUNT + ROD_NZ + 1, 255, 1000, 0x80000000u, UINT_MAX };
+    static const fmi3ValueReference FAR[] = { VR_COUNT + CONTACT_NZ + 1, 255, 1000, 0x80000000u, UINT_MAX };
     const uint8_t sel = take(&in);
-    return sel < 224 ? sel % (VR_COUNT + ROD_NZ + 3) : FAR[sel % (sizeof FAR / sizeof FAR[0])];
+    return sel < 224 ? sel % (VR_COUNT + CONTACT_NZ + 3) : FAR[sel % (sizeof FAR / sizeof FAR[0])];
 }
 
 #define CAP 8 /* capacity of every array handed to the FMU */
@@ -152,7 +152,7 @@ static void run_op(int op, Slot *s)
 {
     const long errors_before = harness.error_messages;
     fmi3ValueReference vr[CAP], vr2[CAP];
-    double v[CAP + ROD_NX + ROD_NZ], w[CAP];
+    double v[CAP + ROD_NX + CONTACT_NZ], w[CAP];
     size_t nvr, nvalues;
     bool null_arrays;
     fmi3Boolean b1 = 7, b2 = 7, b3 = 7, b4 = 7, b5 = 7;
@@ -249,7 +249,7 @@ static void run_op(int op, Slot *s)
     }
     case OP_GET_ARRAYS: {
         const uint8_t which = take(&in), sel = take(&in);
-        const size_t n = (which % 4 == 1 ? ROD_NZ : ROD_NX) + (sel < 200 ? 0 : (size_t)(sel % 3) - 1);
+        const size_t n = (which % 4 == 1 ? CONTACT_NZ : ROD_NX) + (sel < 200 ? 0 : (size_t)(sel % 3) - 1);
         fmi3Float64 *out = sel == 255 ? NULL : v;
         switch (which % 4) {
         case 0: st = CALL(s, false, f->GetContinuousStateDerivatives(s->c, out, n)); break;

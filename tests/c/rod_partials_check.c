@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 /* rod_partials against central finite differences of the functions it
- * differentiates (rod_derivatives, rod_normal_force, rod_friction_force,
- * rod_energy), at random states, parameters and applied loads, in every mode: flight (both
+ * differentiates (the contact core's contact_derivatives, contact_normal_force,
+ * contact_friction_force, contact_energy on the rod), at random states, parameters and applied loads, in every mode: flight (both
  * slip signs), contact slipping forward and backward, sticking. The mode is
  * held fixed, so each function is one smooth branch and the differences
  * never cross a switching surface. Also: dx_x is rod_jacobian, bit for bit.
@@ -44,12 +44,13 @@ static double *param(RodParams *p, int j)
     }
 }
 
-static void values(const RodParams *p, RodMode m, const double x[ROD_NX], double f[NF])
+static void values(const RodParams *p, ContactMode m, const double x[ROD_NX], double f[NF])
 {
-    rod_derivatives(p, m, x, f);
-    f[ROD_NX + ROD_OUT_F_N] = rod_normal_force(p, m, x);
-    f[ROD_NX + ROD_OUT_F_T] = rod_friction_force(p, m, x);
-    f[ROD_NX + ROD_OUT_ENERGY] = rod_energy(p, m, x);
+    const Contact c = rod_contact(p);
+    contact_derivatives(&c, m, x, f);
+    f[ROD_NX + ROD_OUT_F_N] = contact_normal_force(&c, m, x);
+    f[ROD_NX + ROD_OUT_F_T] = contact_friction_force(&c, m, x);
+    f[ROD_NX + ROD_OUT_ENERGY] = contact_energy(&c, m, x);
     rod_coefficient_outputs(p, x, f + ROD_NX);
 }
 
@@ -63,7 +64,7 @@ static double analytic(const RodPartials *d, int i, int j)
 
 /* Column j of the central difference with step h, in the known's own scale n:
  * FD[i] = n (f(k + h) - f(k - h)) / (2 h). */
-static void central_difference(RodParams p, RodMode m, const double x0[ROD_NX], int j, double n, double FD[NF])
+static void central_difference(RodParams p, ContactMode m, const double x0[ROD_NX], int j, double n, double FD[NF])
 {
     double x[ROD_NX], fp[NF], fm[NF];
     const double h = 1e-5 * n;
@@ -85,7 +86,7 @@ static const char *const COL[NK] = { "x", "v", "y", "w", "theta", "phi", "alpha"
 
 /* One random point: every entry, scaled by its known's scale n_j, within REL_TOL of the
  * difference, plus a floor far above the differences' round-off (~1e-11 |f|). */
-static int check_point(RodMode m, const char *mode_name, long *entries)
+static int check_point(ContactMode m, const char *mode_name, long *entries)
 {
     /* kappa, beta up to 30: at penetrations d = -y/eps ~ 3 eps their terms are O(1) parts of h */
     RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3), uniform(0, 30), uniform(0, 30), 0, 0, 0 };
@@ -112,7 +113,8 @@ static int check_point(RodMode m, const char *mode_name, long *entries)
         ++failed;
     }
     double nominal[ROD_NX], n[NK], FD[NK][NF], f[NF], scale[NF] = { 0 };
-    rod_nominals(&p, nominal);
+    const Contact c = rod_contact(&p);
+    c.body->nominals(c.params, c.law.epsilon, nominal);
     for (int j = 0; j < NK; ++j) {
         const double k = j < ROD_NX ? x[j] : *param(&p, j - ROD_NX);
         n[j] = fmax(fabs(k), j < ROD_NX ? nominal[j] : 1e-2);
@@ -140,7 +142,7 @@ static int check_point(RodMode m, const char *mode_name, long *entries)
 
 int main(void)
 {
-    static const struct { RodMode m; const char *name; } MODES[] = {
+    static const struct { ContactMode m; const char *name; } MODES[] = {
         { { false, +1 }, "flight (+1)" }, { { false, -1 }, "flight (-1)" }, { { true, +1 }, "slip forward" },
         { { true, -1 }, "slip backward" }, { { true, 0 }, "stick" },
     };

@@ -11,6 +11,13 @@
 
 static int failures;
 
+/* The core's event indicators on the rod. */
+static void indicators(const RodParams *p, ContactMode m, const double x[ROD_NX], double z[CONTACT_NZ])
+{
+    const Contact c = rod_contact(p);
+    contact_event_indicators(&c, m, x, z);
+}
+
 #define CHECK(cond, ...)                                 \
     do {                                                 \
         if (!(cond)) {                                   \
@@ -26,15 +33,15 @@ static int failures;
  * is 0. False if no such double lies near. */
 static bool on_forward_fold(const RodParams *p, double x[ROD_NX])
 {
-    const RodMode stick = { true, 0 };
+    const ContactMode stick = { true, 0 };
     const RodCoeffs k = rod_coeffs(p, x[ROD_THETA], x[ROD_PHI]);
     /* F_N = -y/eps^2 (delta = 0), so a + q_+ F_N = 0 at y = a eps^2 / q_+. */
     x[ROD_Y] = k.a * p->epsilon * p->epsilon / k.q_plus;
-    double z[ROD_NZ];
+    double z[CONTACT_NZ];
     for (int i = 0; i < 64; ++i) {
-        rod_event_indicators(p, stick, x, z);
-        if (z[ROD_Z_SLIP] == 0) return true;
-        x[ROD_Y] = nextafter(x[ROD_Y], z[ROD_Z_SLIP] > 0 ? 0 : -INFINITY);
+        indicators(p, stick, x, z);
+        if (z[CONTACT_Z_SLIP] == 0) return true;
+        x[ROD_Y] = nextafter(x[ROD_Y], z[CONTACT_Z_SLIP] > 0 ? 0 : -INFINITY);
     }
     return false;
 }
@@ -49,11 +56,13 @@ static void test_a_stuck_rod_on_its_fold_leaves_into_the_stick_by_moving_what_th
         ++found;
         const double before[ROD_NX] = { x[0], x[1], x[2], x[3], x[4], x[5] };
         bool moved = false;
-        CHECK(rod_move_off_surfaces(&p, (RodMode){ true, 0 }, x, 1, &moved), "theta = %g: search failed", theta);
-        double z[ROD_NZ];
-        rod_event_indicators(&p, (RodMode){ true, 0 }, x, z);
-        CHECK(moved && z[ROD_Z_SLIP] < 0, "theta = %g: fold indicator %g after the move, wanted < 0", theta,
-              z[ROD_Z_SLIP]);
+        const Contact c = rod_contact(&p);
+        CHECK(contact_move_off_surfaces(&c, (ContactMode){ true, 0 }, x, (ContactSurfaces){ 0 }, 1, &moved),
+              "theta = %g: search failed", theta);
+        double z[CONTACT_NZ];
+        indicators(&p, (ContactMode){ true, 0 }, x, z);
+        CHECK(moved && z[CONTACT_Z_SLIP] < 0, "theta = %g: fold indicator %g after the move, wanted < 0", theta,
+              z[CONTACT_Z_SLIP]);
         /* v and w do not enter a + q_+ F_N when delta = 0: moving them cannot leave the fold. */
         CHECK(x[ROD_V] == before[ROD_V] && x[ROD_W] == before[ROD_W], "theta = %g: moved v or w", theta);
         double largest = 0;
@@ -98,14 +107,14 @@ static void test_the_contacts_time_scale_is_its_fastest_modes_rate(void)
 static void test_the_flight_indicator_does_not_cross_above_the_floor(void)
 {
     const RodParams p = { .alpha = 3, .mu = 3, .delta = 1, .epsilon = 1e-3 };
-    const RodMode flight = { false, +1 };
+    const ContactMode flight = { false, +1 };
     for (double y = 1e-12; y < 1; y *= 10)
         for (double w = -1e3; w < 0; w /= 10) {
             const double x[ROD_NX] = { [ROD_Y] = y, [ROD_W] = w, [ROD_V] = 1, [ROD_THETA] = 1, [ROD_PHI] = 0.5 };
-            double z[ROD_NZ];
-            rod_event_indicators(&p, flight, x, z);
-            CHECK(z[ROD_Z_FORCE] < 0, "y = %g, w = %g: flight's contact indicator %g, wanted < 0", y, w,
-                  z[ROD_Z_FORCE]);
+            double z[CONTACT_NZ];
+            indicators(&p, flight, x, z);
+            CHECK(z[CONTACT_Z_FORCE] < 0, "y = %g, w = %g: flight's contact indicator %g, wanted < 0", y, w,
+                  z[CONTACT_Z_FORCE]);
         }
 }
 
@@ -168,9 +177,9 @@ static void test_a_contact_entered_from_flight_slips_the_way_v_points(void)
         if (v == 0) continue;
         for (int label = -1; label <= 1; label += 2) {
             double x[ROD_NX] = { [ROD_Y] = -1e-9, [ROD_W] = -0.5, [ROD_V] = v, [ROD_THETA] = 1, [ROD_PHI] = 0.5 };
-            double z[ROD_NZ];
-            rod_event_indicators(&p, (RodMode){ false, label }, x, z);
-            CHECK(z[ROD_Z_SLIP] > 0, "v = %g: flight's slip indicator %g", v, z[ROD_Z_SLIP]);
+            double z[CONTACT_NZ];
+            indicators(&p, (ContactMode){ false, label }, x, z);
+            CHECK(z[CONTACT_Z_SLIP] > 0, "v = %g: flight's slip indicator %g", v, z[CONTACT_Z_SLIP]);
             bool changed;
             const ContactMode m = contact_decide_mode(&c, (ContactMode){ false, label }, x, (ContactSurfaces){ 0 },
                                                       &changed);

@@ -9,14 +9,14 @@
 #ifndef CONFIG_H
 #define CONFIG_H
 
+#include "contact_record.h"
 #include "rod.h"
 #include "rod_partials.h"
-#include "rod_record.h"
 
 #define MODEL_IDENTIFIER PainleveRod
 #define MODEL_NAME "PainleveRod"
 #define MODEL_NX ROD_NX
-#define MODEL_NZ ROD_NZ
+#define MODEL_NZ CONTACT_NZ
 
 /* The optional parts it provides (model.h): rules beyond ranges for kappa and beta,
  * the step means F_N_mean and F_T_mean, the contact's events. */
@@ -62,12 +62,14 @@ typedef RodFlight ModelFlight;
     CONTACT_RECORD_INTERNALS(INTERNAL)                        \
     INTERNAL("step_mean_F_N", step_mean[MEAN_F_N], REAL)  \
     INTERNAL("step_mean_F_T", step_mean[MEAN_F_T], REAL)  \
-    INTERNAL("step_vy_cm", step_start[MEAN_F_N], REAL)    \
-    INTERNAL("step_vx_cm", step_start[MEAN_F_T], REAL)    \
+    INTERNAL("step_vy_cm", step_start[CM_VY], REAL)       \
+    INTERNAL("step_vx_cm", step_start[CM_VX], REAL)       \
     INTERNAL("means_held", means_held, BOOLEAN)
 
-/* The step means (model.h) and the centre of mass's velocity components that give them. */
+/* The step means (model.h), and the centre of mass's velocity components whose change
+ * over the step gives them. */
 enum { MEAN_F_N, MEAN_F_T };
+enum { CM_VY, CM_VX };
 
 /* The model's data: parameters, states, modes, what the events record, and
  * derived values and partial derivatives cached until a change marks them stale. Plain data with no
@@ -77,10 +79,10 @@ typedef struct {
     double x[ROD_NX];
     ContactRecord run;                               /* the mode and what its events recorded */
     double step_mean[2];  /* F_N, F_T averaged over the last Co-Simulation step (the impulse / the step) */
-    double step_start[2]; /* vy_cm, vx_cm when the step began */
+    double step_start[2]; /* vy_cm, vx_cm when the step began (CM_VY, CM_VX) */
     bool means_held;      /* Co-Simulation: F_N_mean, F_T_mean are step_mean; else (Model Exchange) F_N, F_T */
     bool stale, partials_stale;
-    double dx[ROD_NX], z[ROD_NZ], out[ROD_NOUT], mean_out[2];
+    double dx[ROD_NX], z[CONTACT_NZ], out[ROD_NOUT], mean_out[2];
     RodPartials partials;
 } Model;
 

@@ -34,11 +34,12 @@ const char *model_check(unsigned int vr, double value)
 void model_update(Model *m)
 {
     if (!m->stale) return;
-    rod_derivatives(&m->params, m->run.mode, m->x, m->dx);
-    rod_event_indicators(&m->params, m->run.mode, m->x, m->z);
-    m->out[ROD_OUT_F_N] = rod_normal_force(&m->params, m->run.mode, m->x);
-    m->out[ROD_OUT_F_T] = rod_friction_force(&m->params, m->run.mode, m->x);
-    m->out[ROD_OUT_ENERGY] = rod_energy(&m->params, m->run.mode, m->x);
+    const Contact c = rod_contact(&m->params);
+    contact_derivatives(&c, m->run.mode, m->x, m->dx);
+    contact_event_indicators(&c, m->run.mode, m->x, m->z);
+    m->out[ROD_OUT_F_N] = contact_normal_force(&c, m->run.mode, m->x);
+    m->out[ROD_OUT_F_T] = contact_friction_force(&c, m->run.mode, m->x);
+    m->out[ROD_OUT_ENERGY] = contact_energy(&c, m->run.mode, m->x);
     rod_coefficient_outputs(&m->params, m->x, m->out);
     m->mean_out[MEAN_F_N] = m->means_held ? m->step_mean[MEAN_F_N] : m->out[ROD_OUT_F_N];
     m->mean_out[MEAN_F_T] = m->means_held ? m->step_mean[MEAN_F_T] : m->out[ROD_OUT_F_T];
@@ -46,16 +47,18 @@ void model_update(Model *m)
 }
 
 /* The centre of mass's velocity in the paper's units (l = 1): vy = w + phi cos(theta),
- * vx = v + phi sin(theta), at the places of the forces they give (MEAN_F_N, MEAN_F_T). */
+ * vx = v + phi sin(theta). */
 static void centre_velocity(const Model *m, double v_cm[2])
 {
-    v_cm[MEAN_F_N] = m->x[ROD_W] + m->x[ROD_PHI] * cos(m->x[ROD_THETA]);
-    v_cm[MEAN_F_T] = m->x[ROD_V] + m->x[ROD_PHI] * sin(m->x[ROD_THETA]);
+    v_cm[CM_VY] = m->x[ROD_W] + m->x[ROD_PHI] * cos(m->x[ROD_THETA]);
+    v_cm[CM_VX] = m->x[ROD_V] + m->x[ROD_PHI] * sin(m->x[ROD_THETA]);
 }
 
+/* The contact's own scales: y ~ eps^2, w ~ eps. */
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
-    rod_nominals(&m->params, nominal);
+    const Contact c = rod_contact(&m->params);
+    c.body->nominals(c.params, c.law.epsilon, nominal);
 }
 
 void model_step_begin(Model *m, double time)
@@ -67,13 +70,15 @@ void model_step_begin(Model *m, double time)
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     (void)time;
-    rod_derivatives(&m->params, m->run.mode, x, dx);
+    const Contact c = rod_contact(&m->params);
+    contact_derivatives(&c, m->run.mode, x, dx);
 }
 
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
     (void)time;
-    rod_event_indicators(&m->params, m->run.mode, x, z);
+    const Contact c = rod_contact(&m->params);
+    contact_event_indicators(&c, m->run.mode, x, z);
 }
 
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
@@ -86,13 +91,15 @@ void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], do
 
 void model_decide_initial_mode(Model *m)
 {
-    m->run.mode = rod_initial_mode(&m->params, m->x);
+    const Contact c = rod_contact(&m->params);
+    m->run.mode = contact_initial_mode(&c, m->x);
     model_touch(m);
 }
 
 void model_start(Model *m, double time, char *text, size_t size)
 {
-    rod_record_start(&m->run, &m->params, m->x, time);
+    const Contact c = rod_contact(&m->params);
+    contact_record_start(&m->run, &c, m->x, time);
     model_touch(m);
     contact_record_describe_start(&m->run, text, size);
 }
@@ -106,7 +113,8 @@ void model_begin_integration(Model *m)
 bool model_event_update(Model *m, double time, ModelEvent *e)
 {
     model_update(m);
-    const bool ok = rod_record_event(&m->run, &m->params, m->x, m->z, time, 1.0, false, e);
+    const Contact c = rod_contact(&m->params);
+    const bool ok = contact_record_event(&m->run, &c, m->x, m->z, time, 1.0, false, e);
     model_touch(m);
     return ok;
 }
@@ -141,25 +149,40 @@ void model_step_end(Model *m, double elapsed)
 {
     double now[2];
     centre_velocity(m, now);
-    m->step_mean[MEAN_F_N] = elapsed > 0 ? (now[MEAN_F_N] - m->step_start[MEAN_F_N]) / elapsed + 1 : 0;
-    m->step_mean[MEAN_F_T] = elapsed > 0 ? -(now[MEAN_F_T] - m->step_start[MEAN_F_T]) / elapsed : 0;
+    m->step_mean[MEAN_F_N] = elapsed > 0 ? (now[CM_VY] - m->step_start[CM_VY]) / elapsed + 1 : 0;
+    m->step_mean[MEAN_F_T] = elapsed > 0 ? -(now[CM_VX] - m->step_start[CM_VX]) / elapsed : 0;
     m->means_held = true;
     model_touch(m);
 }
 
 /* ------------------------------------------------ partial derivatives */
 
-/* The column of parameter vr in RodPartials (ROD_P_*). */
-static int parameter_column(unsigned int vr)
+/* The column of known vr in RodPartials: a state's (ROD_X ...), a parameter's (ROD_P_*);
+ * -1 for any other variable. */
+static int known_column(unsigned int vr, bool *by_state)
 {
+    *by_state = vr >= VR_X && vr <= VR_PHI;
+    if (*by_state) return (int)(vr - VR_X);
     switch (vr) {
     case VR_ALPHA: return ROD_P_ALPHA;
     case VR_MU: return ROD_P_MU;
     case VR_DELTA: return ROD_P_DELTA;
     case VR_EPSILON: return ROD_P_EPSILON;
     case VR_KAPPA: return ROD_P_KAPPA;
-    default: return ROD_P_BETA;
+    case VR_BETA: return ROD_P_BETA;
+    default: return -1;
     }
+}
+
+/* The row of calculated unknown vr in RodPartials: a derivative's in dx_* (*in_dx), an
+ * output's (ROD_OUT_*) in out_*; -1 for any other variable. */
+static int unknown_row(unsigned int vr, bool *in_dx)
+{
+    *in_dx = vr >= VR_DER_X && vr <= VR_DER_PHI;
+    if (*in_dx) return (int)(vr - VR_DER_X);
+    if (vr >= VR_F_N && vr <= VR_ENERGY) return ROD_OUT_F_N + (int)(vr - VR_F_N);
+    if (vr >= VR_A && vr <= VR_S_W) return ROD_OUT_A + (int)(vr - VR_A);
+    return -1;
 }
 
 const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned int known, double *value)
@@ -176,16 +199,13 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
         rod_partials(&m->params, m->run.mode, m->x, &m->partials);
         m->partials_stale = false;
     }
+    bool by_state, in_dx;
+    const int col = known_column(known, &by_state), row = unknown_row(unknown, &in_dx);
+    if (col < 0) return "the known is not a variable the rod's partial derivatives know";
+    if (row < 0) return "the unknown is not a variable the rod's partial derivatives know";
     const RodPartials *d = &m->partials;
-    const bool by_state = model_variable(known)->kind == KIND_STATE;
-    const int col = by_state ? (int)(known - VR_X) : parameter_column(known);
-    if (unknown >= VR_DER_X && unknown <= VR_DER_PHI) {
-        const int row = (int)(unknown - VR_DER_X);
-        *value = by_state ? d->dx_x[row][col] : d->dx_p[row][col];
-    } else {
-        const int row = unknown >= VR_A ? ROD_OUT_A + (int)(unknown - VR_A) : (int)(unknown - VR_F_N);
-        *value = by_state ? d->out_x[row][col] : d->out_p[row][col];
-    }
+    if (in_dx) *value = by_state ? d->dx_x[row][col] : d->dx_p[row][col];
+    else *value = by_state ? d->out_x[row][col] : d->out_p[row][col];
     return NULL;
 }
 
@@ -193,7 +213,9 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
 
 const char *model_internals_implausible(const Model *m)
 {
-    for (int i = 0; i < 2; ++i)
-        if (!isfinite(m->step_mean[i]) || !isfinite(m->step_start[i])) return "step_mean_F_N";
+    if (!isfinite(m->step_mean[MEAN_F_N])) return "step_mean_F_N";
+    if (!isfinite(m->step_mean[MEAN_F_T])) return "step_mean_F_T";
+    if (!isfinite(m->step_start[CM_VY])) return "step_vy_cm";
+    if (!isfinite(m->step_start[CM_VX])) return "step_vx_cm";
     return contact_record_implausible(&m->run);
 }

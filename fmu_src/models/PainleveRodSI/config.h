@@ -1,21 +1,21 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 /* PainleveRodSI's metadata: the paper's rod in SI units, with inputs for a
  * moving floor and applied loads, over the same physics (rod.c) and event
- * iteration (rod_record.c) as PainleveRod. The variable list drives value
+ * iteration (contact_record.c) as PainleveRod. The variable list drives value
  * references, range checks, getters, setters and the FMU state; its order is
  * that of its modelDescription.xml, in this folder. docs/si_model.md derives
  * the equations. */
 #ifndef CONFIG_H
 #define CONFIG_H
 
+#include "contact_record.h"
 #include "rod.h"
 #include "rod_partials.h"
-#include "rod_record.h"
 
 #define MODEL_IDENTIFIER PainleveRodSI
 #define MODEL_NAME "PainleveRodSI"
 #define MODEL_NX ROD_NX
-#define MODEL_NZ ROD_NZ
+#define MODEL_NZ CONTACT_NZ
 
 /* The optional parts it provides (model.h): a floor that moves with time and jumps
  * when y_floor is set, the step means F_N_mean and F_T_mean, the contact's events. */
@@ -75,15 +75,17 @@ typedef RodFlight ModelFlight;
     INTERNAL("floor_moves", floor_moves, BOOLEAN)         \
     INTERNAL("step_mean_F_N", step_mean[SI_MEAN_F_N], REAL) \
     INTERNAL("step_mean_F_T", step_mean[SI_MEAN_F_T], REAL) \
-    INTERNAL("step_vx_cm", step_start[SI_MEAN_F_T], REAL)  \
-    INTERNAL("step_vy_cm", step_start[SI_MEAN_F_N], REAL)  \
+    INTERNAL("step_vx_cm", step_start[SI_CM_VX], REAL)     \
+    INTERNAL("step_vy_cm", step_start[SI_CM_VY], REAL)     \
     INTERNAL("means_held", means_held, BOOLEAN)
 
 /* Outputs beyond the states and derivatives. */
 enum { SI_F_N, SI_F_T, SI_ENERGY, SI_X_CM, SI_Y_CM, SI_VX_CM, SI_VY_CM, SI_GAP, SI_SLIP, SI_F_N_MEAN, SI_F_T_MEAN,
        SI_A, SI_NOUT = SI_A + ROD_OUT_S_W - ROD_OUT_A + 1 };  /* SI_A ..: the rod's coefficients, scaled */
-/* The step means' order (model_step_integrands_at). */
+/* The step means (model.h), and the centre of mass's velocity components whose change
+ * over the step gives them. */
 enum { SI_MEAN_F_N, SI_MEAN_F_T };
+enum { SI_CM_VY, SI_CM_VX };
 
 /* The model's data: SI parameters, inputs, SI states (the rod's contact end
  * (x, y) and its velocity (v, w), theta, phi), the event record; and, derived
@@ -99,12 +101,12 @@ typedef struct {
     double t_floor;         /* when y_floor was last set: in Co-Simulation the floor moves on at w_floor */
     bool floor_moves;       /* a Co-Simulation step has begun: the floor moves between communication points */
     double step_mean[2];    /* F_N, F_T averaged over the last Co-Simulation step (the impulse / the step) */
-    double step_start[2];   /* vy_cm, vx_cm when the step began */
+    double step_start[2];   /* vy_cm, vx_cm when the step began (SI_CM_VY, SI_CM_VX) */
     bool means_held;        /* Co-Simulation: F_N_mean, F_T_mean are step_mean; else (Model Exchange) F_N, F_T */
     bool stale, partials_stale;
     RodParams rod;        /* alpha, mu, delta, epsilon and the loads in units of m g, m g l */
     double xs[ROD_NX];    /* the state in the paper's units, in the floor's frame */
-    double dx[ROD_NX], z[ROD_NZ], out[SI_NOUT];
+    double dx[ROD_NX], z[CONTACT_NZ], out[SI_NOUT];
     RodPartials partials; /* of the dimensionless rod at xs */
 } Model;
 

@@ -75,7 +75,8 @@ static RodView rod_view(const Model *m, double time, const double x[ROD_NX])
 static void derivatives(const Model *m, const RodView *r, const double x[ROD_NX], double dx[ROD_NX])
 {
     double dxs[ROD_NX];
-    rod_derivatives(&r->p, m->run.mode, r->xs, dxs);
+    const Contact c = rod_contact(&r->p);
+    contact_derivatives(&c, m->run.mode, r->xs, dxs);
     dx[ROD_X] = x[ROD_V];
     dx[ROD_Y] = x[ROD_W];
     dx[ROD_THETA] = x[ROD_PHI];
@@ -102,8 +103,9 @@ static void outputs(Model *m)
     const double *x = m->x, l = m->l, sn = sin(x[ROD_THETA]), cs = cos(x[ROD_THETA]), phi = x[ROD_PHI];
     const double mg = m->m * m->g, gap = x[ROD_Y] - floor_height(m, m->time);
     double *out = m->out;
-    out[SI_F_N] = mg * rod_normal_force(&m->rod, m->run.mode, m->xs);
-    out[SI_F_T] = mg * rod_friction_force(&m->rod, m->run.mode, m->xs);
+    const Contact c = rod_contact(&m->rod);
+    out[SI_F_N] = mg * contact_normal_force(&c, m->run.mode, m->xs);
+    out[SI_F_T] = mg * contact_friction_force(&c, m->run.mode, m->xs);
     out[SI_X_CM] = x[ROD_X] - l * cs;
     out[SI_Y_CM] = x[ROD_Y] + l * sn;
     out[SI_VX_CM] = x[ROD_V] + l * phi * sn;
@@ -120,13 +122,12 @@ static void outputs(Model *m)
     out[SI_F_T_MEAN] = m->means_held ? m->step_mean[SI_MEAN_F_T] : out[SI_F_T];
 }
 
-/* The velocity of the centre of mass, vy_cm = w + l phi cos(theta) and vx_cm = v + l phi sin(theta),
- * at the places of the forces they give (SI_MEAN_F_N, SI_MEAN_F_T). */
+/* The velocity of the centre of mass, vy_cm = w + l phi cos(theta) and vx_cm = v + l phi sin(theta). */
 static void centre_velocity(const Model *m, double v_cm[2])
 {
     const double *x = m->x, lphi = m->l * x[ROD_PHI];
-    v_cm[SI_MEAN_F_N] = x[ROD_W] + lphi * cos(x[ROD_THETA]);
-    v_cm[SI_MEAN_F_T] = x[ROD_V] + lphi * sin(x[ROD_THETA]);
+    v_cm[SI_CM_VY] = x[ROD_W] + lphi * cos(x[ROD_THETA]);
+    v_cm[SI_CM_VX] = x[ROD_V] + lphi * sin(x[ROD_THETA]);
 }
 
 void model_update(Model *m)
@@ -136,7 +137,8 @@ void model_update(Model *m)
     m->rod = r.p;
     memcpy(m->xs, r.xs, sizeof m->xs);
     derivatives(m, &r, m->x, m->dx);
-    rod_event_indicators(&m->rod, m->run.mode, m->xs, m->z);
+    const Contact c = rod_contact(&m->rod);
+    contact_event_indicators(&c, m->run.mode, m->xs, m->z);
     outputs(m);
     m->stale = false;
 }
@@ -144,7 +146,8 @@ void model_update(Model *m)
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
     const RodView r = rod_view(m, m->time, m->x);
-    rod_nominals(&r.p, nominal);
+    const Contact c = rod_contact(&r.p);
+    c.body->nominals(c.params, c.law.epsilon, nominal);
     for (int j = 0; j < ROD_NX; ++j) nominal[j] *= r.s.scale[j];
 }
 
@@ -182,7 +185,8 @@ void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX],
 void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], double z[])
 {
     const RodView r = rod_view(m, time, x);
-    rod_event_indicators(&r.p, m->run.mode, r.xs, z);
+    const Contact c = rod_contact(&r.p);
+    contact_event_indicators(&c, m->run.mode, r.xs, z);
 }
 
 /* d der(x_i)/d x_j = rate_i J_s[i][j]/scale_j for the accelerations (v, w, phi:
@@ -207,7 +211,7 @@ void model_step_end(Model *m, double elapsed)
 {
     double now[2];
     centre_velocity(m, now);
-    const double dvy = now[SI_MEAN_F_N] - m->step_start[SI_MEAN_F_N], dvx = now[SI_MEAN_F_T] - m->step_start[SI_MEAN_F_T];
+    const double dvy = now[SI_CM_VY] - m->step_start[SI_CM_VY], dvx = now[SI_CM_VX] - m->step_start[SI_CM_VX];
     m->step_mean[SI_MEAN_F_N] = elapsed > 0 ? m->m * dvy / elapsed + m->m * m->g - m->F_y : 0;
     m->step_mean[SI_MEAN_F_T] = elapsed > 0 ? m->F_x - m->m * dvx / elapsed : 0;
     m->means_held = true;
@@ -241,14 +245,16 @@ double model_flight_sample_step(const ModelFlight *f, double t)
 void model_decide_initial_mode(Model *m)
 {
     model_update(m);
-    m->run.mode = rod_initial_mode(&m->rod, m->xs);
+    const Contact c = rod_contact(&m->rod);
+    m->run.mode = contact_initial_mode(&c, m->xs);
     model_touch(m);
 }
 
 void model_start(Model *m, double time, char *text, size_t size)
 {
     model_update(m);
-    rod_record_start(&m->run, &m->rod, m->xs, time);
+    const Contact c = rod_contact(&m->rod);
+    contact_record_start(&m->run, &c, m->xs, time);
     m->v_floor_decided = m->v_floor;
     m->time = m->t_floor = time;   /* the floor is where y_floor says at the start */
     model_touch(m);
@@ -270,7 +276,8 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     /* A belt that changed speed leaves the rod's own velocity as it was. */
     const bool belt_jumped = m->v_floor != m->v_floor_decided;
     m->v_floor_decided = m->v_floor;
-    const bool ok = rod_record_event(&m->run, &m->rod, xs, m->z, time, sqrt(m->l / m->g), belt_jumped, e);
+    const Contact c = rod_contact(&m->rod);
+    const bool ok = contact_record_event(&m->run, &c, xs, m->z, time, sqrt(m->l / m->g), belt_jumped, e);
     /* Only what the event moved changes (v = v_floor exactly when a stick begins). */
     for (int j = 0; j < ROD_NX; ++j)
         if (xs[j] != m->xs[j]) m->x[j] = s.offset[j] + s.scale[j] * xs[j];
@@ -302,8 +309,7 @@ const char *model_calculated_partial(Model *m, unsigned int unknown, unsigned in
         rod_partials(&m->rod, m->run.mode, m->xs, &m->partials);
         m->partials_stale = false;
     }
-    *value = si_partial(m, unknown, known);
-    return NULL;
+    return si_partial(m, unknown, known, value);
 }
 
 /* ------------------------------------------------------ FMU state fields */
@@ -314,6 +320,7 @@ const char *model_internals_implausible(const Model *m)
     if (!isfinite(m->t_floor) || !isfinite(m->time)) return "t_floor";
     if (!isfinite(m->step_mean[SI_MEAN_F_N])) return "step_mean_F_N";
     if (!isfinite(m->step_mean[SI_MEAN_F_T])) return "step_mean_F_T";
-    if (!isfinite(m->step_start[SI_MEAN_F_N]) || !isfinite(m->step_start[SI_MEAN_F_T])) return "step_vy_cm";
+    if (!isfinite(m->step_start[SI_CM_VY])) return "step_vy_cm";
+    if (!isfinite(m->step_start[SI_CM_VX])) return "step_vx_cm";
     return contact_record_implausible(&m->run);
 }

@@ -68,11 +68,36 @@ static bool rod_row(const Model *m, unsigned int unknown, RodRow *r)
     return true;
 }
 
+/* The index of parameter vr among the exponents' (E_*); -1 for any other variable. */
+static int exponent_index(unsigned int vr)
+{
+    switch (vr) {
+    case VR_M: return E_M;
+    case VR_L: return E_L;
+    case VR_J: return E_J;
+    case VR_G: return E_G;
+    case VR_K: return E_K;
+    default: return -1;
+    }
+}
+
+/* True if through_rod knows known: a state, an input, mu, c or a parameter with exponents. */
+static bool rod_known(unsigned int known)
+{
+    switch (known) {
+    case VR_X: case VR_V: case VR_Y: case VR_W: case VR_THETA: case VR_PHI:
+    case VR_Y_FLOOR: case VR_W_FLOOR: case VR_V_FLOOR: case VR_F_X: case VR_F_Y: case VR_TAU:
+    case VR_MU: case VR_C: return true;
+    default: return exponent_index(known) >= 0;
+    }
+}
+
+/* d u / d known for a parameter known (mu, c, or one with exponents). */
 static double by_parameter(const Model *m, const RodRow *r, unsigned int known)
 {
     if (known == VR_MU) return r->A * r->d_p[ROD_P_MU];
     if (known == VR_C) return r->A * r->d_p[ROD_P_DELTA] / sqrt(m->m * m->k);
-    const int e = known == VR_M ? E_M : known == VR_L ? E_L : known == VR_J ? E_J : known == VR_G ? E_G : E_K;
+    const int e = exponent_index(known);
     const double theta[NE] = { m->m, m->l, m->J, m->g, m->k };
     const double P[ROD_NP] = { [ROD_P_ALPHA] = m->rod.alpha, [ROD_P_DELTA] = m->rod.delta,
                                [ROD_P_EPSILON] = m->rod.epsilon };
@@ -148,24 +173,29 @@ static double calculated_parameter(const Model *m, unsigned int unknown, unsigne
     if (unknown == VR_DELTA && known == VR_C) return 1 / sqrt(m->m * m->k);
     const int row = unknown == VR_ALPHA ? ROD_P_ALPHA : unknown == VR_DELTA ? ROD_P_DELTA : ROD_P_EPSILON;
     const double value = unknown == VR_ALPHA ? p->alpha : unknown == VR_DELTA ? p->delta : p->epsilon;
-    const int e = known == VR_M ? E_M : known == VR_L ? E_L : known == VR_J ? E_J : known == VR_G ? E_G
-                : known == VR_K ? E_K : -1;
-    return e < 0 ? 0 : PARAM_EXP[row][e] * value / theta[e];
+    const int e = exponent_index(known);
+    return e < 0 ? 0 : PARAM_EXP[row][e] * value / theta[e];   /* alpha, epsilon, delta depend on no other */
 }
 
-double si_partial(const Model *m, unsigned int unknown, unsigned int known)
+const char *si_partial(const Model *m, unsigned int unknown, unsigned int known, double *value)
 {
     RodRow r;
-    if (rod_row(m, unknown, &r)) return through_rod(m, &r, known);
-    switch (unknown) {
-    case VR_DER_X: return known == VR_V;
-    case VR_DER_Y: return known == VR_W;
-    case VR_DER_THETA: return known == VR_PHI;
-    case VR_ENERGY: return energy(m, known);
-    case VR_X_CM: case VR_Y_CM: case VR_VX_CM: case VR_VY_CM: return centre_of_mass(m, unknown, known);
-    case VR_GAP: return known == VR_Y ? 1 : known == VR_Y_FLOOR ? -1 : known == VR_W_FLOOR ? -si_floor_elapsed(m, m->time) : 0;
-    case VR_SLIP: return known == VR_V ? 1 : known == VR_V_FLOOR ? -1 : 0;
-    case VR_ALPHA: case VR_EPSILON: case VR_DELTA: return calculated_parameter(m, unknown, known);
-    default: return 0;
+    if (rod_row(m, unknown, &r)) {
+        if (!rod_known(known)) return "the known is not a variable the SI rod's partial derivatives know";
+        *value = through_rod(m, &r, known);
+        return NULL;
     }
+    const double elapsed = si_floor_elapsed(m, m->time);
+    switch (unknown) {
+    case VR_DER_X: *value = known == VR_V; break;
+    case VR_DER_Y: *value = known == VR_W; break;
+    case VR_DER_THETA: *value = known == VR_PHI; break;
+    case VR_ENERGY: *value = energy(m, known); break;
+    case VR_X_CM: case VR_Y_CM: case VR_VX_CM: case VR_VY_CM: *value = centre_of_mass(m, unknown, known); break;
+    case VR_GAP: *value = known == VR_Y ? 1 : known == VR_Y_FLOOR ? -1 : known == VR_W_FLOOR ? -elapsed : 0; break;
+    case VR_SLIP: *value = known == VR_V ? 1 : known == VR_V_FLOOR ? -1 : 0; break;
+    case VR_ALPHA: case VR_EPSILON: case VR_DELTA: *value = calculated_parameter(m, unknown, known); break;
+    default: return "the unknown is not a variable the SI rod's partial derivatives know";
+    }
+    return NULL;
 }

@@ -8,7 +8,8 @@
 
 #include "model.h"
 
-/* d unknown / d known at m (derived values and m->partials up to date). */
-double si_partial(const Model *m, unsigned int unknown, unsigned int known);
+/* *value = d unknown / d known at m (derived values and m->partials up to date); NULL on
+ * success, else why the pair has none (a variable the SI rod's partials do not know). */
+const char *si_partial(const Model *m, unsigned int unknown, unsigned int known, double *value);
 
 #endif

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
-/* ShakerTable on the model interface (fmu_src/fmi/model.h): a linear, time-driven
+/* ShakerTable on the model interface (model.h): a linear, time-driven
  * oscillator with no modes and no events,
  *     z' = v,   M v' = -K z - C v + F0 sin(2 pi frequency t) - F_N.
  * Knows the table, not FMI. */
