@@ -1,6 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The two-link arm's Co-Simulation table (issue #28: "the two-link arm ... gets the same
-table"): TwoLinkArm (fmu_src/models/TwoLinkArm) as the tests' arm (tests/helpers/arm_lagrange:
+"""The two-link arm's Co-Simulation table, as the rod's: TwoLinkArm (fmu_src/models/TwoLinkArm) as the tests' arm (tests/helpers/arm_lagrange:
 H = 0.3, links of 0.5 and masses 0.5, L = M = g = 1, mu = 1.5), its tip on the floor moving
 at (v0, 0), theta1 = 2.9 (v0 = 0.3) and 0.2 (v0 = 0.5), delta = 0.5 and 1 (k = M g / (L eps^2),
 c = delta sqrt(M k)): each an impact without collision, slip, stick, slip, lift-off. Each case

@@ -26,8 +26,8 @@ from painleve.theory import analytic as an                      # noqa: E402
 FMU = ROOT / "build" / "PainleveRod.fmu"
 NATIVE = ROOT / "build" / "bench" / "native" / "painleve_native_me"
 NATIVE_CS = ROOT / "build" / "bench" / "native" / "painleve_native_cs"
-# Co-Simulation under CVODE alone, as before the explicit pair (issue #28): a build of the commit
-# before it (e.g. main's build/PainleveRod.fmu at 7cee6fa), if given; the runner is left out if not.
+# Co-Simulation under CVODE alone, without the explicit pair: a build of a commit
+# before the pair (e.g. main's build/PainleveRod.fmu at 7cee6fa), if given; the runner is left out if not.
 CVODE_CS_FMU = os.environ.get("PAINLEVE_BENCH_CVODE_CS_FMU")
 NATIVE_CS_FMUS = {"native CS": FMU, **({"native CS (CVODE only)": CVODE_CS_FMU} if CVODE_CS_FMU else {})}
 EPSILONS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)

@@ -3,7 +3,7 @@
 (bench/bounded_cases.py), a few thousand by default, and a table per model x FMI
 version x interface (Model Exchange per solver): cases, hangs, crashes, Zeno
 errors, other errors, Discards, runs where fmpy's CVode gave up, and the slowest
-single call (its time, the call, its case). Issue 23's hangs run first (negative
+single call (its time, the call, its case). The calls that once hung run first (negative
 case numbers). Nothing is asserted: a report.
 
     python bench/bounded_calls.py [--cases N] [--seed S] [--wall SECONDS] [--show error discard]
@@ -27,17 +27,17 @@ def main(argv=None):
     parser.add_argument("--cases", type=int, default=3000)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--wall", type=float, default=10.0, help="a case's wall limit, seconds (a hang past it)")
-    parser.add_argument("--only", type=int, nargs="*", help="run just these cases (negative: issue 23's)")
-    parser.add_argument("--no-issue-cases", action="store_true")
+    parser.add_argument("--only", type=int, nargs="*", help="run just these cases (negative: the calls that once hung)")
+    parser.add_argument("--no-regression-cases", action="store_true")
     parser.add_argument("--show", nargs="*", default=[], metavar="OUTCOME",
                         help="print the cases with these outcomes too (e.g. error discard); failures always")
     args = parser.parse_args(argv)
     models = bc.read_models()
-    issue = {case["index"]: case for case in bc.issue_cases(models)}
+    regression = {case["index"]: case for case in bc.regression_cases(models)}
     if args.only is not None:
-        cases = [issue[k] if k < 0 else bc.make_case(models, args.seed, k) for k in args.only]
+        cases = [regression[k] if k < 0 else bc.make_case(models, args.seed, k) for k in args.only]
     else:
-        cases = ([] if args.no_issue_cases else list(issue.values())) + \
+        cases = ([] if args.no_regression_cases else list(regression.values())) + \
                 [bc.make_case(models, args.seed, k) for k in range(args.cases)]
     started = time.time()
     verbose = args.only is not None

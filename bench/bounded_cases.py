@@ -111,8 +111,8 @@ def make_case(models, seed, index):
     return case
 
 
-def issue_cases(models):
-    """Issue 23's hangs as cases (negative indices), where their FMUs are built: tolerance = start time =
+def regression_cases(models):
+    """The calls that once hung, as cases (negative indices), where their FMUs are built: tolerance = start time =
     48.125 then steps of 0.02 and 0.069 (each model, each FMI version); PainleveRod at tolerance 1.56e-6
     from a deep, stiff start; PainleveRodSI at tolerance 0.157 (a step across t = 2.12 never returned)."""
     rod = dict(alpha=19.93, epsilon=4.87e-6, kappa=3.19, y=-0.1138, w=0.863, phi=1.220)
@@ -122,7 +122,7 @@ def issue_cases(models):
     cases += [dict(model="PainleveRod", fmi=fmi, tolerance=1.56e-6, start=0.0, values=rod, steps=[0.257, 0.257])
               for fmi in (2, 3)]
     cases.append(dict(model="PainleveRodSI", fmi=2, tolerance=0.157, start=0.0, values=si, steps=[0.25] * 10))
-    return [dict(case, index=-k - 1, seed="issue23", interface="CS") for k, case in enumerate(cases)
+    return [dict(case, index=-k - 1, seed="regression", interface="CS") for k, case in enumerate(cases)
             if (case["model"], case["fmi"]) in models]
 
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The convergence study of docs/coupling.md (issue #25): the coupled rod on the shaker table with
+"""The convergence study of docs/coupling.md: the coupled rod on the shaker table with
 both couplings (the step means, the instantaneous forces), in each master.
 
 - momentum: the residual of the system's vertical momentum balance (coupled.momentum_balance)

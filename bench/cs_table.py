@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Co-Simulation from C, the runs of issue #28: each IWC case through the FMU's own
+"""Co-Simulation from C: each IWC case through the FMU's own
 Co-Simulation, one fmi2DoStep from 0 to the case's horizon (bench/native's
 painleve_native_cs: fmi2Reset, fmi2SetupExperiment, the case's values,
 initialization, the step, the reads), with no master's work in the loop.

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The SI rod's Co-Simulation table (issue #28: "the SI rod gets the same table"): the
+"""The SI rod's Co-Simulation table, as the rod's: the
 benchmark's cases (bench_runners.cases_at) as PainleveRodSI starts (a rod of 1 kg and
 half-length 0.5 m, coupling.si.si_of), each through one fmi2DoStep from 0 to the case's
 horizon (in seconds), from Python through fmpy on one instance: fmi2Reset, setup with the

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The harness's sweep, timed side by side: N random Theorem 1 cases through
-Co-Simulation (the harness's fastest path), by main's path before issue #28's
-plan (main's own code, MAIN_COMMIT's python_harness, with the FMU built here: a local
+Co-Simulation (the harness's fastest path), by main's path before
+sweep.plan (main's own code, MAIN_COMMIT's python_harness, with the FMU built here: a local
 dask cluster of 2 worker processes, tasks of 200 cases, through fmpy's wrappers) and by
 today's (sweep.plan: the first chunk in this process, the rest here unless a
 cluster finishes it sooner; on a cluster, a few large chunks per worker; a case's
@@ -19,8 +19,8 @@ workers inherit. Each run is a fresh process, so that its imports, its cluster a
 times each, and the table gives the median. The clock runs from the call of
 run_sweep to its return, as `painleve sweep` spends it: the import of
 dask.distributed, the cluster's start and close included, except in the first
-row, which starts the cluster before the clock as the figures of 7.7 s (issue #28)
-and 13.3 -> 4.7 s were measured."""
+row, which starts the cluster before the clock as the reference figures of 7.7 s
+(REFERENCE_SECONDS) and 13.3 -> 4.7 s were measured (docs/benchmarks.md)."""
 import json
 import os
 import pathlib
@@ -40,8 +40,8 @@ PATHS = {   # name: (what the row says, run_sweep's options)
     "cluster": ("today's on a cluster (`--workers 2`): 8 tasks", dict(workers=2)),
     "auto": ("today's default (sweep.plan)", dict()),
 }
-ISSUE_SECONDS = 7.7     # issue #28's 10,000-case sweep
-MAIN_COMMIT = "cdca957^"    # main before sweep.plan (issue #28): its sweep, its fast loop
+REFERENCE_SECONDS = 7.7     # the 10,000-case sweep the plan was set against (docs/benchmarks.md)
+MAIN_COMMIT = "cdca957^"    # main before sweep.plan: its sweep, its fast loop
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
@@ -119,7 +119,7 @@ def sweep_table(fmu, n=10_000, large=100_000):
         seconds = statistics.median(r["seconds"] for r in results)
         cases = results[0]["cases"]
         where = "local cluster" if results[0]["dask"] else "this process"
-        ratios = " | ".join(f"{ref / seconds:.1f}x" if cases == n else "" for ref in (started, main, ISSUE_SECONDS))
+        ratios = " | ".join(f"{ref / seconds:.1f}x" if cases == n else "" for ref in (started, main, REFERENCE_SECONDS))
         lines.append(f"| {cases:,} | {PATHS[p][0]} | {where} | {seconds:.2f} | {cases / seconds:,.0f} | {ratios} | "
                      f"{max(r['driver_peak_mib'] for r in results):.0f} |")
     out = subprocess.run([sys.executable, __file__, "profile", str(fmu)], capture_output=True, text=True, check=True)
@@ -129,7 +129,7 @@ def sweep_table(fmu, n=10_000, large=100_000):
 
 
 WHERE_THE_TIME_GOES = (
-    "Where the time goes (issue #28). Today's default runs 10,000 cases in this process: a local dask cluster "
+    "Where the time goes. Today's default runs 10,000 cases in this process: a local dask cluster "
     "of 2 workers costs about 4 s before it returns results (the driver's import of dask.distributed about 1 s, "
     "the cluster 0.8-1.6 s, each worker importing the harness and extracting the FMU 1.3 s, closing 0.5 s; "
     "longer on a loaded machine, compare the first two rows), more than the whole sweep takes here, and 2 "
@@ -142,7 +142,7 @@ WHERE_THE_TIME_GOES = (
     "10,000 cases where a generator per case took 0.15 s), Case hashes once; every row bitwise as before "
     "(tests/sweep/test_sweep_rows.py). A serial sweep of the same 10,000 cases took {plain:.2f} s in the same "
     "run; under cProfile ({total:.2f} s, which inflates Python's share and not C's): {shares}. The FMU's C is "
-    "now about half of it (the integrator of issue #28's other branch cuts its doStep further); the rest is the "
+    "now about half of it (the explicit integrator cuts its doStep further); the rest is the "
     "fast loop's Python per case (the Outcome's phases from the FMU's record, the closed-form flight run back, "
     "the run's reset and error context: about 30 us) and the batch's (predictions, DataFrames, Parquet). What "
     "would go further: the phases and the run back from the record in C (an output of the FMU), or a pool "

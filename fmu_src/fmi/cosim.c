@@ -94,8 +94,8 @@ static const char *create(CoSim *cs, double t)
     if (sundials_quiet_logger(cs->ctx)) return "SUNLogger_Create";
     /* Adams, not BDF: between events the rod is smooth on the contact's own time
      * scale eps (stiff only across it), where Adams' higher orders (to 12, BDF 5)
-     * run a case 1.1-1.9x faster, measured from delta = 0 to 100 and at
-     * equal or smaller error; Newton with the Jacobian keeps large delta stable. */
+     * take fewer steps for the same error (docs/fmu.md); Newton with the Jacobian
+     * keeps large delta stable. */
     if (!(cs->cvode = CVodeCreate(CV_ADAMS, cs->ctx))) return "CVodeCreate";
     if (sundials_catch_errors(cs->ctx, cs->cvode, &cs->error)) return "setting CVODE's error handler";
     if (!(cs->y = N_VNew_Serial(MODEL_NX, cs->ctx))) return "N_VNew_Serial";

@@ -9,8 +9,8 @@
 #include "instance.h"
 
 /* The standard's fmi2Functions.h prefixes the fmi2 names with
- * FMI2_FUNCTION_PREFIX; fmpy's copy, which the build uses, was changed to add
- * none. Either way the exported names get the prefix, as our own do. */
+ * FMI2_FUNCTION_PREFIX; fmpy's copy, which the build uses, adds none. Either
+ * way the exported names get the prefix, as our own do. */
 #ifdef FMI2_FUNCTION_PREFIX
 #undef fmi2FullName
 #define fmi2FullName(name) NAMESPACED(name)

@@ -1,21 +1,23 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
-/* A Co-Simulation step under any FMI version (instance.h): the explicit
- * Dormand-Prince pair of explicit_rk.c integrates the model, or, where a
- * sustained contact makes it stiff, the embedded CVODE of cosim.c; each event
- * either locates gets the same event update as in Model Exchange.
+/* A Co-Simulation step under any FMI version (instance.h). The explicit
+ * Dormand-Prince pair of explicit_rk.c integrates the model (a flight the model
+ * knows in closed form is evaluated: closed_flight.c), or, where a sustained
+ * contact makes it stiff, the embedded CVODE of cosim.c; every event found
+ * inside a step gets the same event update as in Model Exchange.
  *
- * The integrator continues from one step to the next (a communication point
+ * The integrator carries on from one step to the next (a communication point
  * costs no restart) and restarts after events and wherever the trajectory may
- * have been replaced: initialization, reset, FMU state get and set. So the FMU
- * state is still the model's, and which integrator the trajectory has. A
- * trajectory handed to CVODE stays with it, across events and restarts, until the
- * instance is reset or an event turns to a mode whose fast motion grows (the paradox's
- * contact, whose growth BDF's large steps damp; instance_choose_integrator): in a stiff contact the explicit pair's errors, within the
- * tolerance in the states, reach the contact force times the damping (an SI rod
- * with c = 4.8e9 N s/m: its force indicator chattered through 20,000 spurious
- * lift-offs), where CVODE stays on the slow motion; and a rod on the shaker
- * table, whose inputs restart the integrator at every step, is not tested for
- * stiffness again each time. An IWC never hands over: the explicit pair runs it. */
+ * have been replaced: initialization, reset, FMU state get and set; the FMU
+ * state holds which integrator the trajectory is on. A trajectory handed to
+ * CVODE stays with it, across events and restarts, until the instance is reset
+ * or an event turns to a mode whose fast motion grows (the paradox's contact,
+ * whose growth BDF's large steps would damp; instance_choose_integrator). In a
+ * stiff contact the explicit pair's errors, within the tolerance in the states,
+ * reach the contact force times the damping, and its force indicator would
+ * chatter through spurious lift-offs, where CVODE stays on the slow motion; and
+ * a model whose inputs restart the integrator at every step (a rod on the shaker
+ * table) is not tested for stiffness again each time. An IWC never hands over:
+ * the explicit pair runs it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -94,13 +96,12 @@ static Status restart(Instance *in, const char *call)
     return STATUS_OK;
 }
 
-/* What one Co-Simulation call may spend (docs/bounded_calls.md). An IWC takes
- * 4 events and a few hundred CVODE steps (286 at eps = 1e-6); a rod resting
- * on the floor at eps = 1e-8 about 4e4 steps per time unit, one spinning at
- * phi = 3e4 about 4e5 (a contact every 2e-4). At 2-20 us a step here the
- * budgets hold hundreds of IWCs and return within a few seconds. A master
- * whose step needs more gets fmi2Discard / fmi3Discard at the time reached
- * (its last successful time) and goes on from there with smaller steps. */
+/* What one Co-Simulation call may spend: room for hundreds of IWCs (a few
+ * events and a few hundred solver steps each) and for the fastest contacts the
+ * parameter ranges allow, while every call returns within seconds
+ * (docs/bounded_calls.md has the figures). A master whose step needs more gets
+ * fmi2Discard / fmi3Discard at the time reached (its last successful time) and
+ * goes on from there with smaller steps. */
 #define MAX_SOLVER_STEPS_PER_CALL 200000L
 #define MAX_EVENTS_PER_CALL 20000L
 

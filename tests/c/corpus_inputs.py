@@ -107,29 +107,29 @@ def si_values(**values):
     return [(SI[k], v) for k, v in values.items()]
 
 
-# Issue 23: the CI failure. tolerance = startTime = 48.125, steps of 0.02 and 0.069: the second never returned.
-ISSUE23_TOL = ISSUE23_START = 48.125
-# Issue 23: random legal PainleveRod FMI 2.0 Co-Simulation case at tolerance 1.56e-6 (steps of 0.257).
-ISSUE23_ROD = rod_values(alpha=19.93, epsilon=4.87e-6, kappa=3.19, y=-0.1138, w=0.863, phi=1.220)
-# Issue 23: random legal PainleveRodSI case at tolerance 0.157 (the rod then rides the rising floor, and a step
+# A hang: tolerance = startTime = 48.125, steps of 0.02 and 0.069: the second never returned.
+HANG_TOL = HANG_START = 48.125
+# A hang: a random legal PainleveRod FMI 2.0 Co-Simulation case at tolerance 1.56e-6 (steps of 0.257).
+HANG_ROD = rod_values(alpha=19.93, epsilon=4.87e-6, kappa=3.19, y=-0.1138, w=0.863, phi=1.220)
+# A hang: a random legal PainleveRodSI case at tolerance 0.157 (the rod then rides the rising floor, and a step
 # across t = 2.12 never returns); the fuzz target's budget of integrated time is 0.2 s, so the input starts from
 # the state a step to t = 2 gives (the floor there at y_floor, 2e-9 m below the end point).
-ISSUE23_SI = si_values(m=1.30, l=4.30, J=0.0662, c=2801, w_floor=0.918, F_x=0.184, F_y=0.0925, y_floor=1.836,
+HANG_SI = si_values(m=1.30, l=4.30, J=0.0662, c=2801, w_floor=0.918, F_x=0.184, F_y=0.0925, y_floor=1.836,
                        x=22.655100914489168, v=7.048054929223361, y=1.83599999795985, w=0.9179999877867877,
                        theta=5.9989693168944, phi=-2.82071953447854)
 
 INPUTS = {
     # Read by every target (any bytes are an input of each); the rod's own targets are the ones they replay.
-    "regress3-issue23-tolerance-48.125-second-step-hangs":
-        Fmi3().enter_init(ISSUE23_TOL, ISSUE23_START).exit_init().do_step(0.02).do_step(0.069).b,
-    "regress-issue23-tolerance-48.125-second-step-hangs":
-        Fmi2().setup(ISSUE23_TOL, ISSUE23_START).initialize().do_step(0.02).do_step(0.069).b,
-    "regress-issue23-stiff-deep-start-step-hangs":
-        Fmi2().setup(1.56e-6, 0.0).set_real(ISSUE23_ROD).initialize().do_step(0.257).do_step(0.257).b,
-    "regress3-issue23-stiff-deep-start-step-hangs":
-        Fmi3().enter_init(1.56e-6, 0.0).set_float64(ISSUE23_ROD).exit_init().do_step(0.1).do_step(0.1).b,
-    "regress-si-issue23-loose-tolerance-step-hangs":
-        Fmi2().setup(0.157, 0.0).set_real(ISSUE23_SI).initialize().do_step(0.1).do_step(0.1).b,
+    "regress3-tolerance-48.125-second-step-hangs":
+        Fmi3().enter_init(HANG_TOL, HANG_START).exit_init().do_step(0.02).do_step(0.069).b,
+    "regress-tolerance-48.125-second-step-hangs":
+        Fmi2().setup(HANG_TOL, HANG_START).initialize().do_step(0.02).do_step(0.069).b,
+    "regress-stiff-deep-start-step-hangs":
+        Fmi2().setup(1.56e-6, 0.0).set_real(HANG_ROD).initialize().do_step(0.257).do_step(0.257).b,
+    "regress3-stiff-deep-start-step-hangs":
+        Fmi3().enter_init(1.56e-6, 0.0).set_float64(HANG_ROD).exit_init().do_step(0.1).do_step(0.1).b,
+    "regress-si-loose-tolerance-step-hangs":
+        Fmi2().setup(0.157, 0.0).set_real(HANG_SI).initialize().do_step(0.1).do_step(0.1).b,
     # tests/fmu/test_bounded_calls.py's case 363 (seed 1): mu at its max 1e6, tolerance 1.67e-4, start 48.125.
     "regress3-bounded-case-363-mu-1e6-step-hangs":
         Fmi3().enter_init(0.00016730382132527658, 48.125)

@@ -21,7 +21,7 @@
  * state round trips, two instances, logging, Co-Simulation, an error and a
  * reset) and the inputs that once broke an invariant (regress-*), kept as
  * regression cases: the first ones the target's own false alarms, since fixed;
- * regress-*issue23-* calls that never returned (issue 23), written from
+ * regress-*-hangs calls that never returned, written from
  * readable call sequences by tests/c/corpus_inputs.py. The CI runs are
  * deterministic: -runs=N -seed=S over the corpus, -timeout per input.
  *

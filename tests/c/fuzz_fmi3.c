@@ -18,7 +18,7 @@
  * missing bytes read 0. Both targets replay tests/c/corpus (any bytes are an
  * input of either); seed3-* are this one's seeds, regress3-* inputs that once
  * broke an invariant (the first ones the target's own false alarms, since
- * fixed; regress3-issue23-* steps that never returned, from
+ * fixed; regress3-*-hangs steps that never returned, from
  * tests/c/corpus_inputs.py).
  *
  *   fuzz_fmi3 CORPUS_DIR... [-runs=N] [-max_total_time=S]   fuzz (libFuzzer flags)

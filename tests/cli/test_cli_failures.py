@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Every failure a user can cause ends in one line on stderr that names the input and what to
-do, exit status 2 for bad input and 1 for a failed run, and no traceback (issue #18): bad
+do, exit status 2 for bad input and 1 for a failed run, and no traceback: bad
 numbers and counts, paths that cannot be written, FMUs that are not this model's or do not
 load here, an unreachable dask scheduler, a sweep too large to hold."""
 import json

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The README's code blocks run as written in the set-up `bash run.sh` makes, and print what
-their comments say (issue #18): the Python blocks of the quick start, whose printed values are
+their comments say: the Python blocks of the quick start, whose printed values are
 checked against the paper's e (computed here by integrating the sticking system) and against
 the comments beside them, and the block of `painleve` commands, run verbatim in a fresh
 directory that has the build. (The set-up blocks, `bash run.sh ...` and `pip install ...`, are

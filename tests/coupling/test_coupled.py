@@ -73,8 +73,8 @@ def test_the_coupled_archive_is_valid(coupling, forces, si_fmu_path, table_path,
     ssp = write_coupled_ssp(tmp_path / "coupled.ssp", si_fmu_path, table_path, SOFT, stop_time=SOFT_STOP,
                             coupling=coupling)
     assert check_ssp(ssp) == []
-    # the five connections of ISSUE15.md, each from an output to an input; the table's loads from
-    # the rod's step means (issue #25) or its forces at the communication points
+    # the five connections of the coupled study (docs/coupling.md), each from an output to an input;
+    # the table's loads from the rod's step means or its forces at the communication points
     from fmpy.ssp.ssd import read_ssd
     assert {(c.startElement, c.startConnector, c.endElement, c.endConnector) for c in read_ssd(str(ssp)).system.connections} == {
         ("table", "position", "rod", "y_floor"), ("table", "velocity", "rod", "w_floor"),
@@ -176,7 +176,7 @@ def lift_off_w(r, setup):
 
 
 def paper_numbers(setup):
-    """The SI rod's dimensionless numbers (ISSUE15.md's scaling, written out here): alpha = m l^2/J,
+    """The SI rod's dimensionless numbers (docs/si_model.md's scaling, written out here): alpha = m l^2/J,
     epsilon = sqrt(m g/(k l)), delta = c/sqrt(m k), theta0, v0 = (v - belt)/sqrt(g l), phi0 = phi sqrt(l/g)."""
     p, t = setup.rod_values(), setup.table_values()
     m, l, g, k = p["m"], p["l"], p["g"], p["k"]

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The coupled study with the FMI 3.0 FMUs (build/fmi3/PainleveRodSI.fmu on build/fmi3/ShakerTable.fmu,
-issue #25): in every master that loads FMI 3.0 (masters.FMI3_MASTERS: ecos) the momentum balance
+"""The coupled study with the FMI 3.0 FMUs (build/fmi3/PainleveRodSI.fmu on build/fmi3/ShakerTable.fmu):
+in every master that loads FMI 3.0 (masters.FMI3_MASTERS: ecos) the momentum balance
 closes as with FMI 2.0 and the coupled trajectory is the FMI 2.0 one (the same model cores and
 solver under either layer: to round-off); the masters that do not load it refuse it with the reason
 docs/coupling.md gives (should one learn FMI 3.0, its test fails and it joins FMI3_MASTERS)."""

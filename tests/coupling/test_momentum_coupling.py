@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The coupling that conserves momentum (issue #25): PainleveRodSI's step-averaged contact forces
+"""The coupling that conserves momentum: PainleveRodSI's step-averaged contact forces
 F_N_mean, F_T_mean and ShakerTable's mount_force_mean, drive_force_mean, and the SSP system built on
 them (painleve.coupling.coupled, coupling="mean"). What the physics fixes, asserted here:
 

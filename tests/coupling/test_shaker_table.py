@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""ShakerTable.fmu (fmu_src/models/ShakerTable, issue #15's second FMU): a table top of mass M on a
+"""ShakerTable.fmu (fmu_src/models/ShakerTable, the coupled study's second FMU): a table top of mass M on a
 spring K and a damper C, driven by F0 sin(2 pi f t) and loaded by the input F_N,
 
     M z'' + C z' + K z = F0 sin(W t) - F_N,   W = 2 pi f,
@@ -35,7 +35,7 @@ def test_the_closed_form_solves_the_equation():
 @pytest.mark.parametrize("fmi_type", INTERFACES)
 def test_forced_damped_oscillator_follows_the_closed_form_and_converges_with_the_tolerance(table_path, fmi_type):
     errors = []
-    # Co-Simulation's explicit pair (issue #28) at communication steps of 1e-3 takes the master's
+    # Co-Simulation's explicit pair at communication steps of 1e-3 takes the master's
     # step, whose error (2.6e-9) is below both tolerances: at 1e-2 its own step control decides.
     interval = 1e-2 if fmi_type == "CoSimulation" else 1e-3
     for tolerance in (1e-6, 1e-8):

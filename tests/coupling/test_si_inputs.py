@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The SI rod's inputs through fmpy's low-level API (FMU2Model, FMU2Slave): a NaN or an
-infinite input is refused with fmi2Error and a message naming the input (issue #15), in
+infinite input is refused with fmi2Error and a message naming the input, in
 every state in which inputs may be set; a finite one is taken."""
 import math
 

@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Every call returns (issue 23): random legal cases of every built FMU, both
+"""Every call returns: random legal cases of every built FMU, both
 interfaces and FMI versions (bench/bounded_cases.py draws them: parameters within
 the model description's min/max, states, inputs, tolerances from 1e-14 to 48.125,
 start times, step sizes; Model Exchange through fmpy's CVode and Euler, Co-Simulation
-step by step), each in a worker process under a wall limit, and issue 23's own hangs.
+step by step), each in a worker process under a wall limit, and the calls that once hung.
 
 A case fails on a hang (past the wall limit), a crash, an error whose log says
 "Zeno" (a give-up where the motion goes on), a Discard from anything but a doStep,
@@ -35,7 +35,7 @@ def test_every_call_returns_on_random_legal_cases():
     for path in bc.FMUS.values():
         built_fmu(path.removeprefix("build/"))
     models = bc.read_models()
-    cases = bc.issue_cases(models) + [bc.make_case(models, SEED, k) for k in range(CASES)]
+    cases = bc.regression_cases(models) + [bc.make_case(models, SEED, k) for k in range(CASES)]
     results = br.run_cases(models, cases, WALL)
     assert sorted(results) == sorted(case["index"] for case in cases)
     failed = [(case, results[case["index"]]) for case in cases if results[case["index"]]["outcome"] in br.FAILURES]

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Co-Simulation's flight in closed form (fmu_src/fmi/closed_flight.c, issue #28): where the rod
+"""Co-Simulation's flight in closed form (fmu_src/fmi/closed_flight.c): where the rod
 flies (no contact force), a Co-Simulation step evaluates its exact ballistic motion. Checked
 against that motion computed here, independently, with numpy (the centre of mass falls at
 constant acceleration, the rod turns at constant angular acceleration), at the loosest and the

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The coefficient outputs a, b, p_plus, p_minus, q_plus, q_minus, S_w of PainleveRod and
-PainleveRodSI (issue #27) at random states, against the paper's closed forms (eq coeffs,
+PainleveRodSI at random states, against the paper's closed forms (eq coeffs,
 eq Sw: tests/helpers/paper_formulas.py), a second derivation from the mass matrix and the
 contact point's Jacobians (tests/helpers/delassus.py), and the kinematics of the contact end
 (a, b are its accelerations with no contact force: the rod's centre of mass falls freely,

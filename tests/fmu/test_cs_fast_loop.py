@@ -29,7 +29,7 @@ def free_flight(theta, phi, v, w, s):
 
 
 # w = 1e-7 is a Theorem 2 lift-off's at eps = 1e-6: the O(1) terms of the height cancel to 1e-16,
-# which the run back must not turn into 1e-16 / w of time (a relative 1e-3 in w, seen before #28).
+# which the run back must not turn into 1e-16 / w of time (a relative 1e-3 in w).
 # What rounding is left is 1e-16 of the flight's own terms (~phi s) over w: s up to a few hundred w.
 @pytest.mark.parametrize("w, s", [(1e-7, 2e-6), (1e-7, 2e-5), (1e-4, 2e-6), (1e-4, 1e-3), (0.5, 1e-3), (0.5, 0.2)])
 def test_flight_back_to_floor_inverts_the_free_flight(w, s):

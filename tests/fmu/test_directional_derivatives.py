@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""fmi2GetDirectionalDerivative (issue #12) against central finite differences of
+"""fmi2GetDirectionalDerivative against central finite differences of
 the FMU's own values, and modelDescription.xml's ModelStructure against what the
 FMU computes.
 
@@ -28,7 +28,7 @@ from helpers.raw_instances import Rod, _P
 
 STATES = ["x", "v", "y", "w", "theta", "phi"]
 PARAMETERS = ["alpha", "mu", "delta", "epsilon", "kappa", "beta"]
-# A nonlinear compliance law (issue #16), so that the partials by kappa and beta are measured
+# A nonlinear compliance law, so that the partials by kappa and beta are measured
 # (their central differences need kappa, beta > 0: both are refused below 0); the linear law
 # kappa = beta = 0 is one point of it, covered by tests/c/rod_partials_check.c.
 DEFAULTS = dict(alpha=3.0, mu=3.0, delta=1.0, epsilon=1e-3, kappa=0.5, beta=0.5)

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Co-Simulation's explicit pair (fmu_src/fmi/explicit_rk.c, issue #28): the
+"""Co-Simulation's explicit pair (fmu_src/fmi/explicit_rk.c): the
 Dormand-Prince 5(4) pair integrates flights and short contacts, locates events on
 its dense output, and hands a sustained contact to CVODE. Checked against the
 free flight's closed form, against Model Exchange under fmpy's CVode (another

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""PainleveRodSI and ShakerTable as FMI 3.0 FMUs (build/fmi3/NAME.fmu, issue #25): the same model
+"""PainleveRodSI and ShakerTable as FMI 3.0 FMUs (build/fmi3/NAME.fmu): the same model
 cores and instance as their FMI 2.0 FMUs under FMI 3.0's layer (fmu_src/fmi/fmi3_*.c), their model
 descriptions made from the FMI 2.0 ones (cmake/fmi3_model_description.py). The FMI 3.0 rod's checks
 (test_fmi3.py, tests/interop/test_fmi3_importers.py) that are not its dimensionless physics, over

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The FMU describes itself (issue #18): units (rad for angles, a named dimensionless unit for
+"""The FMU describes itself: units (rad for angles, a named dimensionless unit for
 the rest, the paper's scales), a stepSize in the DefaultExperiment, and documentation/index.html
 made from the model's variables; in the FMI 2.0 FMU and in the FMI 3.0 one, whose model
 description the build makes from the FMI 2.0 one."""

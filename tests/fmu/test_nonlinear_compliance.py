@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The FMU with a nonlinear compliance law (issue #16): h(yh, w) = -yh + kappa d^2 - delta w (1 + beta d),
+"""The FMU with a nonlinear compliance law: h(yh, w) = -yh + kappa d^2 - delta w (1 + beta d),
 d = max(-y/eps, 0), kappa a stiffening spring, beta a damping growing with penetration.
 
 - Theorem 1 on the FMU converges, as eps -> 0, to the rigid limit computed for that law

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""PainleveRod's step means F_N_mean, F_T_mean (issue #25; PainleveRodSI's are in
+"""PainleveRod's step means F_N_mean, F_T_mean (PainleveRodSI's are in
 tests/coupling/test_momentum_coupling.py): in Co-Simulation the contact forces averaged over the
 last communication step, in Model Exchange the forces themselves. The reference is the forces'
 own integral, a trapezoid sum of F_N, F_T sampled every 1e-5 time units on the same trajectory

@@ -57,7 +57,7 @@ def test_a_tolerance_outside_the_range_is_clamped_with_a_warning_naming_the_rang
 
 
 def test_the_fuzzers_hang_returns_promptly_through_fmi2(loaded):
-    # The finding of issue #23 through FMI 2.0: start 48.125, tolerance 48.125, steps 0.02 and 0.069.
+    # The fuzzer's hang through FMI 2.0: start 48.125, tolerance 48.125, steps 0.02 and 0.069.
     rod = loaded.instantiate(fmi_type="CoSimulation")
     assert rod.setupExperiment(tolerance=48.125, startTime=48.125) == fmi2Warning
     rod.enterInitializationMode()

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""TwoLinkArm (issue #27), the contact core's second body: its description validates (FMI 2.0
+"""TwoLinkArm, the contact core's second body: its description validates (FMI 2.0
 and 3.0), its energy is conserved in flight and dissipated in contact, and its coefficients
 a, b, p_plus, p_minus, q_plus, q_minus, S_w are those of an independent computation from the
 links' centres of mass (tests/helpers/two_link_arm.py; the Delassus matrix W M^-1 W^T of

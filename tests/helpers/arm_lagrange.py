@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""An independent numpy model of the compliant two-link arm of issue #27 (not the C): a pivot at
+"""An independent numpy model of the compliant two-link arm (not the C): a pivot at
 height H above the floor, link 1 (m1, l1, J1 about its middle) to the elbow, link 2 (m2, l2, J2)
 to the tip, which touches the floor; absolute angles theta1, theta2 counterclockwise from +x.
 

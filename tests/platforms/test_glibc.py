@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Issue #26: which glibc the Linux binaries need. CVODE's pow is linked to glibc's oldest
+"""Which glibc the Linux binaries need. CVODE's pow is linked to glibc's oldest
 pow symbol (cmake/glibc_pow.c), not pow@GLIBC_2.29, so the x86_64 binaries need glibc 2.14
 (memcpy) and the aarch64 ones 2.17 (the first aarch64 glibc): RHEL 7 and 8 load them. Read
 from each binary's dynamic symbol versions (objdump -T), for the native build and every

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Issue #26: one FMU per model and FMI version with every platform's binary in it
+"""One FMU per model and FMI version with every platform's binary in it
 (build/platforms/, `bash run.sh platforms`), and the same numbers on every platform.
 
 Each binary (win64 under wine64, aarch64 under qemu-user) runs the same cases, Model

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Issue #26: a source FMU that builds Co-Simulation anywhere. Every FMU the build makes
+"""A source FMU that builds Co-Simulation anywhere. Every FMU the build makes
 (build/ and build/fmi3/, which `run.sh` builds with the pinned SUNDIALS sources at hand, and the
 multi-platform ones of build/platforms/, `bash run.sh platforms`) carries the CVODE subset of the
 pinned SUNDIALS in sources/ (cmake/PainleveCvodeSources.cmake), listed in FMI 2.0's

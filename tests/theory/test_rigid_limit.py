@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""The rigid limit of IWC for a nonlinear compliance law (painleve.theory.rigid_limit, issue #16),
+"""The rigid limit of IWC for a nonlinear compliance law (painleve.theory.rigid_limit),
 against the paper's closed forms for the linear law, an energy argument for the
 undamped law, the scaling of the law, and a second, independent integration."""
 import numpy as np

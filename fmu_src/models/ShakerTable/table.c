@@ -113,8 +113,8 @@ void model_step_end(Model *m, double elapsed)
     const double omega = TWO_PI * p->frequency, t0 = m->step_time, t1 = t0 + elapsed;
     double drive_mean = 0, mount_mean = 0;
     if (elapsed > 0) {
-        /* omega elapsed may underflow to 0 for a tiny step (fuzz_bounded_ShakerTable found a division
-         * by zero): the mean is then the drive at t0, the quotient's limit (0 when omega = 0) */
+        /* omega elapsed may underflow to 0 for a tiny step: the mean is then the drive at t0,
+         * the quotient's limit (0 when omega = 0), not a division by zero */
         const double phase = omega * elapsed;
         drive_mean = phase > 0 ? p->F0 * (cos(omega * t0) - cos(omega * t1)) / phase : p->F0 * sin(omega * t0);
         mount_mean = p->M * (m->x[TABLE_V] - m->step_velocity) / elapsed - drive_mean + m->F_N;
