@@ -297,3 +297,17 @@ def test_directional_derivative_of_or_by_a_non_known_is_an_error(loaded, unknown
     status, category, message = inst.rod.messages[-1]
     assert category == "logStatusError" and message.startswith("fmi2GetDirectionalDerivative: ")
     inst.free()
+
+
+@pytest.mark.parametrize("unknown, known", [("der(v)", 999), (999, "y"), ("F_N", 10**6)])
+def test_a_value_reference_the_model_does_not_have_is_an_error_naming_it(loaded, unknown, known):
+    # Never another variable's derivative: an unknown value reference is refused, by number.
+    inst = Instance(loaded, SMOOTH["slip forward"][0], False)
+    vr = [inst.vr.get(unknown, unknown), inst.vr.get(known, known)]
+    with pytest.raises(FMICallException) as err:
+        inst.rod.fmu.getDirectionalDerivative([vr[0]], [vr[1]], [1.0])
+    assert err.value.status == FMI2_ERROR
+    status, category, message = inst.rod.messages[-1]
+    bad = vr[0] if unknown not in inst.vr else vr[1]
+    assert category == "logStatusError" and f"value reference {bad} is not" in message
+    inst.free()
