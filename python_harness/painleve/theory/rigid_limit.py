@@ -47,7 +47,7 @@ START = 1e-7   # the manifold is entered at |w| = START |w_stick|: its curvature
 
 
 def h(yh, w, delta, kappa=0.0, beta=0.0):
-    """The compliance law h(yh, w) (as fmu_src/rod/rod.c's rod_compliance computes it)."""
+    """The compliance law h(yh, w) (as fmu_src/contact/contact.c's contact_compliance computes it)."""
     d = np.maximum(-yh, 0.0)
     return -yh + kappa * d * d - delta * w * (1 + beta * d)
 

@@ -34,7 +34,7 @@
 
 /* Mode-switch events (the FMI 3.0 driver's Co-Simulation checks): the run of
  * the start values over PROFILE_RUN_SPAN is an IWC (contact, one stick,
- * lift-off), which the event record's switches and sticks count (rod_record.h). */
+ * lift-off), which the event record's switches and sticks count (contact_record.h). */
 #define PROFILE_MODE_SWITCHES 1
 #define PROFILE_RUN_SPAN 0.1 /* the default experiment */
 
