@@ -18,7 +18,7 @@
 /* The optional part it provides (model.h): the contact's events. */
 #define MODEL_EVENTS
 
-/* No analytic partial derivatives yet (providesDirectionalDerivative="false" in the XML):
+/* No analytic partial derivatives (providesDirectionalDerivative="false" in the XML):
  * fmi2GetDirectionalDerivative and its FMI 3.0 twins answer this error. */
 #define MODEL_NO_PARTIALS "TwoLinkArm provides no directional derivatives (providesDirectionalDerivative = false)"
 
