@@ -91,6 +91,7 @@ function(painleve_pinned_sundials OUT_DIR OUT_WHY)
       file(REMOVE_RECURSE ${where}/sundials-sys-${SUNDIALS_SYS_VERSION})
       file(GLOB stamps ${where}/unpacked-*)
       file(REMOVE ${stamps})
+      file(MAKE_DIRECTORY ${where})
       execute_process(COMMAND ${CMAKE_COMMAND} -E tar xzf ${crate} WORKING_DIRECTORY ${where}
                       RESULT_VARIABLE status ERROR_VARIABLE error)
       if(NOT status EQUAL 0)
