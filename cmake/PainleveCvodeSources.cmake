@@ -104,7 +104,7 @@ function(painleve_pinned_sundials OUT_DIR OUT_WHY)
     endif()
   endif()
   if(NOT EXISTS ${src}/src/cvode/cvode.c OR NOT EXISTS ${src}/include/sundials/sundials_config.in)
-    message(FATAL_ERROR "PAINLEVE_CVODE_SOURCE_DIR=${src} is no SUNDIALS source tree")
+    message(FATAL_ERROR "${src} is no SUNDIALS source tree")
   endif()
   painleve_tree_sha256(${src} tree)
   if(NOT tree STREQUAL SUNDIALS_TREE_SHA256)
@@ -116,16 +116,15 @@ endfunction()
 
 # CVODE_BUNDLE_DIR (the folder to copy into sources/), CVODE_BUNDLE_SOURCES (its .c
 # files, relative to sources/), CVODE_BUNDLE_VERSION and CVODE_BUNDLE_ORIGIN (the
-# SUNDIALS release, and the folder it came from named by its parent: sundials-sys-0.6.2/vendor)
-# from the pinned sources (painleve_pinned_sundials). Where those cannot be had, all are empty
-# and CVODE_BUNDLE_MISSING says why, in one warning: the FMUs then carry no sources/ at all,
-# since sources without CVODE would not build the Co-Simulation their binaries declare.
+# SUNDIALS release, and where it came from: the pinned crate's vendor/) from the pinned
+# sources (painleve_pinned_sundials). Where those cannot be had, all are empty and one
+# warning says why: the FMUs then carry no sources/ at all (CMakeLists.txt), since sources
+# without CVODE would not build the Co-Simulation their binaries declare.
 function(painleve_cvode_bundle)
   set(CVODE_BUNDLE_DIR "" PARENT_SCOPE)
   set(CVODE_BUNDLE_SOURCES "" PARENT_SCOPE)
   set(CVODE_BUNDLE_VERSION "" PARENT_SCOPE)
   set(CVODE_BUNDLE_ORIGIN "" PARENT_SCOPE)
-  set(CVODE_BUNDLE_MISSING "" PARENT_SCOPE)
   painleve_pinned_sundials(src why)
   if(NOT src)
     message(WARNING "The FMUs carry no sources/: ${why}. Without the pinned SUNDIALS sources "
@@ -133,7 +132,6 @@ function(painleve_cvode_bundle)
                     "have, so they are binary-only. Pass -DPAINLEVE_SUNDIALS_CRATE=sundials-sys-"
                     "${SUNDIALS_SYS_VERSION}.crate (fetched by hand) or -DPAINLEVE_CVODE_SOURCE_DIR=its vendor/ "
                     "folder for source FMUs.")
-    set(CVODE_BUNDLE_MISSING "${why}" PARENT_SCOPE)
     return()
   endif()
   file(STRINGS ${src}/CMakeLists.txt version REGEX "set\\(PACKAGE_VERSION_(MAJOR|MINOR|PATCH) ")
