@@ -57,14 +57,16 @@ importer_setup() {
 }
 
 # SUNDIALS 7 for tests/fmu/test_sundials7.py (Debian 12 has 6): the sources that
-# the crates.io crate sundials-sys vendors (0.6.2: SUNDIALS 7.1.1), fetched
+# the crates.io crate sundials-sys vendors (cmake/sundials.pin: SUNDIALS 7.1.1), fetched
 # by cargo and built once, static, CVODE alone, into .tools/ (about 10 s).
-SUNDIALS_SYS_VERSION=0.6.2
 SUNDIALS7=$TOOLS/sundials-7.1
 # The pinned SUNDIALS sources: sundials-sys's vendor/ folder, fetched by cargo (which
 # checks the crate against crates.io's checksum) and checked here against the hash of
-# the tree (every file's sha256, in byte order of the names) pinned below. Prints the folder.
-SUNDIALS_TREE_SHA256=926b161e5437799201880054b6312b4ae7123a922370753f6193eaaa8be1158a
+# the tree (every file's sha256, in byte order of the names). cmake/sundials.pin pins both
+# (SUNDIALS_SYS_VERSION, SUNDIALS_TREE_SHA256), for this script and the CMake build alike,
+# which checks the tree again and downloads the same crate itself where no tree is given.
+# Prints the folder.
+. "$ROOT/cmake/sundials.pin"
 sundials_source() {
     local cargo work src hash
     cargo=$(find_cargo)

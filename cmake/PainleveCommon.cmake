@@ -3,7 +3,7 @@
 # headers of the installed fmpy, the header made from modelDescription.xml
 # (the GUID's one home), and static SUNDIALS CVODE (Debian's, or SUNDIALS_ROOT's) if it is there.
 
-# FMI_HEADERS: fmpy's c-code directory (headers are never copied).
+# FMI_HEADERS: fmpy's c-code directory (headers are never copied), and Python3_EXECUTABLE.
 function(painleve_find_fmi_headers)
   find_package(Python3 REQUIRED COMPONENTS Interpreter)
   execute_process(
@@ -13,6 +13,8 @@ function(painleve_find_fmi_headers)
     message(FATAL_ERROR "fmpy is not installed for ${Python3_EXECUTABLE}: run the README's set-up (pip install -r requirements.txt)")
   endif()
   set(FMI_HEADERS ${headers} PARENT_SCOPE)
+  # The build's scripts run with the same Python (found here unless given as -DPython3_EXECUTABLE).
+  set(Python3_EXECUTABLE ${Python3_EXECUTABLE} PARENT_SCOPE)
 endfunction()
 
 # Writes OUT_DIR/model_description.h from MODEL_DESCRIPTION, the one home of

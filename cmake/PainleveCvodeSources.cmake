@@ -2,8 +2,11 @@
 # The CVODE subset a source FMU carries, so that an importer's own
 # compiler (fmpy's build_platform_binary, OpenModelica's importFMU with sources)
 # builds a Co-Simulation binary with no SUNDIALS installed: from the pinned
-# SUNDIALS tree that `run.sh platforms` passes as -DPAINLEVE_CVODE_SOURCE_DIR
-# (sundials-sys 0.6.2's vendor/, hash-checked; docs/platforms.md).
+# SUNDIALS sources (cmake/sundials.pin: sundials-sys 0.6.2's vendor/, hash-checked;
+# docs/platforms.md), which every build path uses. run.sh passes the tree cargo fetched
+# as -DPAINLEVE_CVODE_SOURCE_DIR; without it the build downloads the pinned crate
+# itself (or takes -DPAINLEVE_SUNDIALS_CRATE, the file fetched by hand), checks it
+# against the pin and unpacks it into the build tree.
 #
 # In the FMU's sources/: SUNDIALS' public headers in their folders (cvode/,
 # sundials/, nvector/, ...: found by -I sources, the one include folder a tool
@@ -11,23 +14,125 @@
 # POSIX timers, no GCC attributes, nothing exported), the implementation files
 # flat in sundials_src/ (quoted includes find each other there), and
 # cvode_bundled.h, which defines HAVE_CVODE where cvode_build.h finds it.
-set(PAINLEVE_CVODE_SOURCE_DIR "" CACHE PATH "pinned SUNDIALS 7 sources to put in the source FMUs (empty: none)")
+set(PAINLEVE_CVODE_SOURCE_DIR "" CACHE PATH
+    "the pinned SUNDIALS sources (sundials-sys's vendor/) for the source FMUs (empty: the build downloads them)")
+set(PAINLEVE_SUNDIALS_CRATE "" CACHE FILEPATH
+    "the pinned sundials-sys .crate file, for a build with no network (empty: downloaded)")
+
+# The pin: SUNDIALS_SYS_VERSION, SUNDIALS_CRATE_SHA256 and SUNDIALS_TREE_SHA256 (cmake/sundials.pin).
+file(STRINGS ${CMAKE_CURRENT_LIST_DIR}/sundials.pin _painleve_pins REGEX "^[A-Z0-9_]+=")
+foreach(_painleve_pin IN LISTS _painleve_pins)
+  string(REGEX MATCH "^([A-Z0-9_]+)=(.*)$" _ "${_painleve_pin}")
+  set(${CMAKE_MATCH_1} "${CMAKE_MATCH_2}")
+endforeach()
+if(NOT SUNDIALS_SYS_VERSION OR NOT SUNDIALS_CRATE_SHA256 OR NOT SUNDIALS_TREE_SHA256)
+  message(FATAL_ERROR "${CMAKE_CURRENT_LIST_DIR}/sundials.pin does not pin the SUNDIALS sources")
+endif()
+set(PAINLEVE_SUNDIALS_CRATE_URL
+    "https://static.crates.io/crates/sundials-sys/sundials-sys-${SUNDIALS_SYS_VERSION}.crate" CACHE STRING
+    "where the build downloads the pinned sundials-sys crate from (the registry's download of that version)")
+
+# The hash of the tree in DIR, as run.sh computes it: sha256sum's line ("HASH  ./PATH") for
+# every file, in byte order of the paths, hashed together. In OUT_VAR.
+function(painleve_tree_sha256 DIR OUT_VAR)
+  file(GLOB_RECURSE files LIST_DIRECTORIES false RELATIVE ${DIR} ${DIR}/*)
+  list(SORT files)
+  set(lines "")
+  foreach(file IN LISTS files)
+    if(NOT IS_SYMLINK ${DIR}/${file})
+      file(SHA256 ${DIR}/${file} hash)
+      string(APPEND lines "${hash}  ./${file}\n")
+    endif()
+  endforeach()
+  string(SHA256 tree "${lines}")
+  set(${OUT_VAR} ${tree} PARENT_SCOPE)
+endfunction()
+
+# The pinned SUNDIALS tree in OUT_DIR: PAINLEVE_CVODE_SOURCE_DIR, else the crate
+# (PAINLEVE_SUNDIALS_CRATE, else downloaded into the build tree) unpacked in the build tree;
+# either checked against the pin. Where the crate cannot be had, OUT_DIR is empty and
+# OUT_WHY says why.
+function(painleve_pinned_sundials OUT_DIR OUT_WHY)
+  set(${OUT_DIR} "" PARENT_SCOPE)
+  set(${OUT_WHY} "" PARENT_SCOPE)
+  set(src "${PAINLEVE_CVODE_SOURCE_DIR}")
+  if(NOT src)
+    set(where ${CMAKE_BINARY_DIR}/sundials-sources)
+    set(crate "${PAINLEVE_SUNDIALS_CRATE}")
+    if(crate)
+      if(NOT EXISTS "${crate}")
+        message(FATAL_ERROR "PAINLEVE_SUNDIALS_CRATE=${crate} does not exist")
+      endif()
+    else()
+      set(crate ${where}/sundials-sys-${SUNDIALS_SYS_VERSION}.crate)
+      set(hash "")
+      if(EXISTS ${crate})
+        file(SHA256 ${crate} hash)
+      endif()
+      if(NOT hash STREQUAL SUNDIALS_CRATE_SHA256)
+        message(STATUS "Downloading the pinned SUNDIALS sources: sundials-sys ${SUNDIALS_SYS_VERSION}")
+        file(DOWNLOAD ${PAINLEVE_SUNDIALS_CRATE_URL} ${crate}.part STATUS status TLS_VERIFY ON
+             INACTIVITY_TIMEOUT 60 TIMEOUT 600)
+        list(GET status 0 code)
+        if(NOT code EQUAL 0)
+          list(GET status 1 message)
+          file(REMOVE ${crate}.part)
+          set(${OUT_WHY} "${PAINLEVE_SUNDIALS_CRATE_URL} could not be downloaded (${message})" PARENT_SCOPE)
+          return()
+        endif()
+        file(RENAME ${crate}.part ${crate})
+      endif()
+    endif()
+    file(SHA256 ${crate} hash)
+    if(NOT hash STREQUAL SUNDIALS_CRATE_SHA256)
+      message(FATAL_ERROR "${crate}: sha256 ${hash}, pinned ${SUNDIALS_CRATE_SHA256} (cmake/sundials.pin)")
+    endif()
+    set(src ${where}/sundials-sys-${SUNDIALS_SYS_VERSION}/vendor)
+    if(NOT EXISTS ${where}/unpacked-${hash})
+      file(REMOVE_RECURSE ${where}/sundials-sys-${SUNDIALS_SYS_VERSION})
+      file(GLOB stamps ${where}/unpacked-*)
+      if(stamps)
+        file(REMOVE ${stamps})
+      endif()
+      file(MAKE_DIRECTORY ${where})
+      execute_process(COMMAND ${CMAKE_COMMAND} -E tar xzf ${crate} WORKING_DIRECTORY ${where}
+                      RESULT_VARIABLE status ERROR_VARIABLE error)
+      if(NOT status EQUAL 0)
+        message(FATAL_ERROR "${crate} could not be unpacked: ${error}")
+      endif()
+      file(WRITE ${where}/unpacked-${hash} "")
+    endif()
+  endif()
+  if(NOT EXISTS ${src}/src/cvode/cvode.c OR NOT EXISTS ${src}/include/sundials/sundials_config.in)
+    message(FATAL_ERROR "${src} is no SUNDIALS source tree")
+  endif()
+  painleve_tree_sha256(${src} tree)
+  if(NOT tree STREQUAL SUNDIALS_TREE_SHA256)
+    message(FATAL_ERROR "${src}: tree hash ${tree}, pinned ${SUNDIALS_TREE_SHA256} (cmake/sundials.pin): "
+                        "not the pinned SUNDIALS sources")
+  endif()
+  set(${OUT_DIR} ${src} PARENT_SCOPE)
+endfunction()
 
 # CVODE_BUNDLE_DIR (the folder to copy into sources/), CVODE_BUNDLE_SOURCES (its .c
 # files, relative to sources/), CVODE_BUNDLE_VERSION and CVODE_BUNDLE_ORIGIN (the
-# SUNDIALS release, and the folder it came from named by its parent: sundials-sys-0.6.2/vendor);
-# all empty without PAINLEVE_CVODE_SOURCE_DIR.
+# SUNDIALS release, and where it came from: the pinned crate's vendor/) from the pinned
+# sources (painleve_pinned_sundials). Where those cannot be had, all are empty and one
+# warning says why: the FMUs then carry no sources/ at all (CMakeLists.txt), since sources
+# without CVODE would not build the Co-Simulation their binaries declare.
 function(painleve_cvode_bundle)
   set(CVODE_BUNDLE_DIR "" PARENT_SCOPE)
   set(CVODE_BUNDLE_SOURCES "" PARENT_SCOPE)
   set(CVODE_BUNDLE_VERSION "" PARENT_SCOPE)
   set(CVODE_BUNDLE_ORIGIN "" PARENT_SCOPE)
-  set(src ${PAINLEVE_CVODE_SOURCE_DIR})
+  painleve_pinned_sundials(src why)
   if(NOT src)
+    message(WARNING "The FMUs carry no sources/: ${why}. Without the pinned SUNDIALS sources "
+                    "(cmake/sundials.pin) their sources could not build the Co-Simulation their binaries "
+                    "have, so they are binary-only. Pass -DPAINLEVE_SUNDIALS_CRATE=sundials-sys-"
+                    "${SUNDIALS_SYS_VERSION}.crate (fetched by hand) or -DPAINLEVE_CVODE_SOURCE_DIR=its vendor/ "
+                    "folder for source FMUs.")
     return()
-  endif()
-  if(NOT EXISTS ${src}/src/cvode/cvode.c OR NOT EXISTS ${src}/include/sundials/sundials_config.in)
-    message(FATAL_ERROR "PAINLEVE_CVODE_SOURCE_DIR=${src} is no SUNDIALS source tree")
   endif()
   file(STRINGS ${src}/CMakeLists.txt version REGEX "set\\(PACKAGE_VERSION_(MAJOR|MINOR|PATCH) ")
   string(REGEX REPLACE "[^;]*\"([0-9]+)\"[^;]*" "\\1" version "${version}")
@@ -86,13 +191,10 @@ function(painleve_cvode_bundle)
   file(WRITE ${out}/cvode_bundled.h
     "/* Written by cmake/PainleveCvodeSources.cmake: this source FMU carries CVODE (sundials_src/). */\n"
     "#ifndef HAVE_CVODE\n#define HAVE_CVODE 1\n#endif\n")
-  get_filename_component(parent ${src} DIRECTORY)
-  get_filename_component(parent ${parent} NAME)
-  get_filename_component(folder ${src} NAME)
   set(CVODE_BUNDLE_DIR ${out} PARENT_SCOPE)
   set(CVODE_BUNDLE_SOURCES ${names} PARENT_SCOPE)
   set(CVODE_BUNDLE_VERSION ${version} PARENT_SCOPE)
-  set(CVODE_BUNDLE_ORIGIN "the sources ${parent}/${folder} holds" PARENT_SCOPE)
+  set(CVODE_BUNDLE_ORIGIN "the sources sundials-sys-${SUNDIALS_SYS_VERSION}/vendor holds" PARENT_SCOPE)
 endfunction()
 
 # TEXT (an FMI 2.0 model description) with CVODE_BUNDLE_SOURCES added to each of
@@ -103,5 +205,26 @@ function(painleve_cvode_bundle_description TEXT OUT_VAR)
     string(APPEND files "  <File name=\"${name}\"/>\n")
   endforeach()
   string(REGEX REPLACE "([ \t]*)</SourceFiles>" "${files}\\1</SourceFiles>" text "${TEXT}")
+  set(${OUT_VAR} "${text}" PARENT_SCOPE)
+endfunction()
+
+# TEXT (an FMI 2.0 model description) with every <SourceFiles> element taken out, in OUT_VAR:
+# the description of an FMU that carries no sources/. Each pass takes out one element.
+function(painleve_without_source_files TEXT OUT_VAR)
+  set(text "${TEXT}")
+  string(FIND "${text}" "<SourceFiles>" first)
+  while(NOT first EQUAL -1)
+    string(FIND "${text}" "</SourceFiles>" last)
+    if(last LESS first)
+      message(FATAL_ERROR "a <SourceFiles> element without its end")
+    endif()
+    math(EXPR last "${last} + 14")
+    string(SUBSTRING "${text}" 0 ${first} before)
+    string(SUBSTRING "${text}" ${last} -1 after)
+    string(REGEX REPLACE "[ \t]*$" "" before "${before}")
+    string(REGEX REPLACE "^[ \t]*\n" "" after "${after}")
+    set(text "${before}${after}")
+    string(FIND "${text}" "<SourceFiles>" first)
+  endwhile()
   set(${OUT_VAR} "${text}" PARENT_SCOPE)
 endfunction()

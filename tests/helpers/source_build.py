@@ -4,6 +4,7 @@ with the SUNDIALS libraries the project's own build found."""
 import pathlib
 import re
 import shutil
+import subprocess
 
 import fmpy
 from fmpy.build import build_platform_binary
@@ -74,3 +75,25 @@ def sysroot_without_sundials(where):
 def without_system_sundials(where):
     """cmake options of a source build whose compiler sees no SUNDIALS of the system's."""
     return {"CMAKE_C_FLAGS": f"--sysroot={sysroot_without_sundials(where)}"}
+
+
+def cosimulation_from_sources(fmu_path, where):
+    """The FMU's sources built as an importer builds them (fmpy's build_platform_binary, with no
+    options of ours) by a compiler that sees no SUNDIALS of the system's, in where/: the extracted
+    FMU with its new binary, and that binary. The FMU must list the CVODE subset in its sources and
+    declare Co-Simulation."""
+    unzipped = pathlib.Path(fmpy.extract(str(fmu_path), where / "fmu"))
+    md = fmpy.read_model_description(unzipped)
+    sources = md.buildConfigurations[0].sourceFileSets[0].sourceFiles
+    assert "sundials_src/cvode.c" in sources and md.coSimulation is not None, fmu_path
+    shutil.rmtree(unzipped / "binaries")
+    (where / "build").mkdir()
+    build_platform_binary(unzipped, build_dir=where / "build", cmake_options=without_system_sundials(where))
+    return unzipped, next((unzipped / "binaries").glob("*/*.so"))
+
+
+def assert_cvode_compiled_in(binary, version):
+    """CVODE came from sources/: SUNDIALS VERSION is in the binary, and it needs no SUNDIALS library."""
+    assert version.encode() in binary.read_bytes(), f"{binary} holds no SUNDIALS {version}"
+    needed = subprocess.run(["objdump", "-p", str(binary)], capture_output=True, text=True, check=True).stdout
+    assert "sundials" not in needed.lower().split("dynamic section")[1].split("version references")[0]

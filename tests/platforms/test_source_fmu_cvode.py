@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """A source FMU that builds Co-Simulation anywhere. Every FMU the build makes
-(build/ and build/fmi3/, which `run.sh` builds with the pinned SUNDIALS sources at hand, and the
-multi-platform ones of build/platforms/, `bash run.sh platforms`) carries the CVODE subset of the
+(build/ and build/fmi3/, and the multi-platform ones of build/platforms/ and build/platforms/fmi3/,
+`bash run.sh platforms`; tests/package/test_cvode_build_paths.py covers the sdist's wheel and the
+build that downloads the sources itself) carries the CVODE subset of the
 pinned SUNDIALS in sources/ (cmake/PainleveCvodeSources.cmake), listed in FMI 2.0's
 <SourceFiles> and FMI 3.0's buildDescription.xml. Built as an importer builds it (fmpy's
 build_platform_binary, with no options of ours) by a compiler that sees no SUNDIALS of the
@@ -9,20 +10,31 @@ system's (a sysroot without its headers, no SUNDIALS library linked), its Co-Sim
 default experiment as the multi-platform FMU's binary does (the same SUNDIALS), and as its own
 binary does to the solver's tolerance where that links Debian's SUNDIALS 6 (build/)."""
 import pathlib
-import shutil
+import re
 import subprocess
 
 import fmpy
 import numpy as np
 import pytest
-from fmpy.build import build_platform_binary
 
-from helpers.source_build import without_system_sundials
+from helpers.source_build import assert_cvode_compiled_in, cosimulation_from_sources
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILT = sorted(str(p.relative_to(ROOT / "build")) for pattern in ("*.fmu", "fmi3/*.fmu")
                for p in (ROOT / "build").glob(pattern))
 FMUS = BUILT + [f"platforms/{f}" for f in BUILT]
+
+
+def test_the_source_build_covers_every_fmu_the_build_makes():
+    """FMUS is every FMU of build/, build/fmi3/, build/platforms/ and build/platforms/fmi3/, and those
+    are both FMI versions of every model CMakeLists.txt adds."""
+    made = sorted(str(p.relative_to(ROOT / "build")) for pattern in ("*.fmu", "fmi3/*.fmu", "platforms/*.fmu",
+                                                                    "platforms/fmi3/*.fmu")
+                  for p in (ROOT / "build").glob(pattern))
+    assert sorted(FMUS) == made
+    models = re.findall(r"^painleve_add_model\((\w+)[^)]*\bFMI3\b", (ROOT / "CMakeLists.txt").read_text(), re.M)
+    expected = [f"{where}{model}.fmu" for where in ("", "fmi3/", "platforms/", "platforms/fmi3/") for model in models]
+    assert models and sorted(FMUS) == sorted(expected)
 
 
 def bundled_version():
@@ -37,19 +49,10 @@ def test_source_build_without_system_sundials_runs_cosimulation_like_the_shipped
     built = ROOT / "build" / fmu
     shipped = ROOT / "build" / "platforms" / fmu.removeprefix("platforms/")
     assert built.is_file() and shipped.is_file(), f"{built} or {shipped} is missing (bash run.sh platforms)"
-    unzipped = pathlib.Path(fmpy.extract(str(built), tmp_path / "fmu"))
-    md = fmpy.read_model_description(unzipped)
-    sources = md.buildConfigurations[0].sourceFileSets[0].sourceFiles
-    assert "sundials_src/cvode.c" in sources and md.coSimulation is not None
-    shutil.rmtree(unzipped / "binaries")
-    (tmp_path / "build").mkdir()
     monkeypatch.setenv("CMAKE_BUILD_PARALLEL_LEVEL", "2")
-    build_platform_binary(unzipped, build_dir=tmp_path / "build", cmake_options=without_system_sundials(tmp_path))
-    binary = next((unzipped / "binaries").glob("*/*.so"))
-    # CVODE came from sources/: the bundled SUNDIALS' version is in the binary, no SUNDIALS library is needed.
-    assert bundled_version().encode() in binary.read_bytes()
-    needed = subprocess.run(["objdump", "-p", str(binary)], capture_output=True, text=True, check=True).stdout
-    assert "sundials" not in needed.lower().split("dynamic section")[1].split("version references")[0]
+    unzipped, binary = cosimulation_from_sources(built, tmp_path)
+    md = fmpy.read_model_description(unzipped)
+    assert_cvode_compiled_in(binary, bundled_version())
     a = fmpy.simulate_fmu(str(shipped), fmi_type="CoSimulation")
     b = fmpy.simulate_fmu(unzipped, fmi_type="CoSimulation")
     assert len(a) == len(b) > 10
