@@ -56,6 +56,15 @@ def refuse_rod_options(args, command, also=()):
                          f"for a body FMU; give the body's start values with --set NAME=VALUE")
 
 
+def refuse_body_options(args, command, options):
+    """A UsageError naming the first of a body's options (`options`: (name, default) pairs) given with another
+    value on the rod's own path, which has its own cases and cannot honour it."""
+    given = [k for k, default in options if getattr(args, k, default) != default]
+    if given:
+        raise UsageError(f"painleve {command}: --{given[0]} is an option of a body's case (with --set NAME=VALUE "
+                         f"or a body FMU); the rod's own {command} runs its own cases")
+
+
 def _case(args, epsilon):
     from ..experiments.case import BodyCase
     return BodyCase(given=tuple(assignment(s) for s in args.set), v0=args.v0, epsilon=epsilon, delta=args.delta,
@@ -125,6 +134,9 @@ def run_figures(args, fmu):
     if args.only:
         raise UsageError("painleve figures: --only chooses among the rod's figures; a body FMU has one, its "
                          "paradox region")
+    if args.guess:
+        raise UsageError("painleve figures: --guess picks a branch of a start solved onto the floor; the paradox "
+                         "region solves none (give its fixed start values with --set)")
     given = dict(assignment(s) for s in args.set)
     for path in paradox_figure(fmu, args.out, given=given, n=args.points, dpi=args.dpi):
         print(path)

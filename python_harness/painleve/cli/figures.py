@@ -23,11 +23,12 @@ def add_parser(sub):
 
 def run(args):
     from ..figures.paper import FIGURES, make_figures
-    if args.fmu or args.set:
+    if args.fmu or args.set or args.guess:
         fmu = fmu_file(args.fmu, allow_body=True)
         if body.is_body(fmu, args):
             output_path(args.out, "painleve figures: --out", directory=True)
             return body.run_figures(args, fmu)
+    body.refuse_body_options(args, "figures", (("points", 81),))
     only = None
     if args.only:
         only = [n.strip() for n in args.only.split(",") if n.strip()]
