@@ -117,11 +117,21 @@ def test_the_rods_own_iwc_takes_the_general_path_and_its_closed_forms_agree(inte
     assert out["simulated"]["w"] == pytest.approx(e, rel=5e-3)            # v0 = 1, Theorem 1 at eps = 1e-4
 
 
-@pytest.mark.parametrize("args,option", [(["validate", "--v0", "2"], "--v0"), (["validate", "--delta", "3"], "--delta"),
-                                         (["figures", "--points", "9"], "--points")])
-def test_a_body_option_the_rods_own_path_cannot_honour_is_an_error(tmp_path, args, option):
-    r = run(*args, "--fmu", built_fmu("PainleveRod.fmu"), *(["--out", tmp_path] if args[0] == "figures" else []))
+@pytest.mark.parametrize("args,option", [(["--v0", "2"], "--v0"), (["--delta", "3"], "--delta")])
+def test_a_body_option_the_rods_own_validation_cannot_honour_is_an_error(args, option):
+    r = run("validate", *args, "--fmu", built_fmu("PainleveRod.fmu"))
     assert r.returncode == 2 and option in one_line_error(r)
+
+
+def test_the_rods_own_figures_draw_the_paradox_region_every_body_gets_its_wedge(tmp_path):
+    r = run("figures", "--fmu", built_fmu("PainleveRod.fmu"), "--only", "paradox", "--points", "401", "--out", tmp_path,
+            check_rc=0)
+    assert str(tmp_path / "paradox_region.png") in r.stdout.split() and not (tmp_path / "fig_GB.png").exists()
+    data = json.loads((tmp_path / "paradox_region.json").read_text())
+    th, pp = np.array(data["grids"][0]), np.array(data["p_plus"])
+    inside = th[(pp < 0) & (th > 0) & (th < np.pi / 2)]
+    h = th[1] - th[0]
+    assert inside.min() == pytest.approx(A.theta_1(), abs=h) and inside.max() == pytest.approx(A.theta_2(), abs=h)
 
 
 def test_guess_is_refused_where_nothing_is_solved(tmp_path):

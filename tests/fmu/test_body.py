@@ -100,6 +100,7 @@ def test_the_rods_case_is_a_case_of_the_general_path_and_gives_the_analytic_e(fm
     case = Case(theta0=1.0, phi0=0.5, v0=1.3, delta=0.5, epsilon=1e-5)
     assert isinstance(case, IWCCase) and isinstance(BodyCase(given=()), IWCCase)
     assert dict(case.given)["w"] == case.w0 == 0 and case.solve == case.guess == ()
+    assert case.configuration()["theta0"] == 1.0 and BodyCase(given=(("x", 0.0),)).configuration()["given"] == (("x", 0.0),)
     with Body(built_fmu("PainleveRod.fmu"), fmi_type=fmi_type) as body:
         predicted, outcome = run_body(body, case)
     with Experiment(built_fmu("PainleveRod.fmu"), fmi_type=fmi_type) as ex:
