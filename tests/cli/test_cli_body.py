@@ -102,3 +102,38 @@ def test_iwc_through_co_simulation_runs_the_fmus_integrator_and_agrees_with_mode
 def test_a_rod_option_the_body_path_cannot_honour_is_an_error(args, option):
     r = run("iwc", "--fmu", built_fmu("TwoLinkArm.fmu"), *args)
     assert r.returncode == 2 and option in one_line_error(r) and "--set" in one_line_error(r)
+
+
+@pytest.mark.parametrize("interface", ["ME", "CS"])
+def test_the_rods_own_iwc_takes_the_general_path_and_its_closed_forms_agree(interface):
+    """`painleve iwc` without --set runs the rod's Case through the path of every body: the theory from the
+    FMU's coefficient outputs (theory.general) must be the rod's closed forms (eq eGeneral at theta0)."""
+    out = json.loads(run("iwc", "--fmu", built_fmu("PainleveRod.fmu"), "--theta0", "1.1", "--delta", "2", "--eps",
+                         "1e-4", "--interface", interface, "--json", check_rc=0).stdout)
+    e = A.e(2.0, 1.1)
+    assert out["from_fmu"]["e"] == pytest.approx(e, rel=1e-12) and out["predicted"]["e"] == pytest.approx(e, rel=1e-15)
+    assert out["from_fmu"]["coefficients"]["p_plus"] == pytest.approx(A.p_plus(1.1), rel=1e-13)
+    assert out["from_fmu"]["quadrant"] == "inconsistent" and out["simulated"]["iwc"]
+    assert out["simulated"]["w"] == pytest.approx(e, rel=5e-3)            # v0 = 1, Theorem 1 at eps = 1e-4
+
+
+@pytest.mark.parametrize("args,option", [(["--v0", "2"], "--v0"), (["--delta", "3"], "--delta")])
+def test_a_body_option_the_rods_own_validation_cannot_honour_is_an_error(args, option):
+    r = run("validate", *args, "--fmu", built_fmu("PainleveRod.fmu"))
+    assert r.returncode == 2 and option in one_line_error(r)
+
+
+def test_the_rods_own_figures_draw_the_paradox_region_every_body_gets_its_wedge(tmp_path):
+    r = run("figures", "--fmu", built_fmu("PainleveRod.fmu"), "--only", "paradox", "--points", "401", "--out", tmp_path,
+            check_rc=0)
+    assert str(tmp_path / "paradox_region.png") in r.stdout.split() and not (tmp_path / "fig_GB.png").exists()
+    data = json.loads((tmp_path / "paradox_region.json").read_text())
+    th, pp = np.array(data["grids"][0]), np.array(data["p_plus"])
+    inside = th[(pp < 0) & (th > 0) & (th < np.pi / 2)]
+    h = th[1] - th[0]
+    assert inside.min() == pytest.approx(A.theta_1(), abs=h) and inside.max() == pytest.approx(A.theta_2(), abs=h)
+
+
+def test_guess_is_refused_where_nothing_is_solved(tmp_path):
+    r = run("figures", "--fmu", built_fmu("TwoLinkArm.fmu"), "--guess", "theta2=-1", "--out", tmp_path)
+    assert r.returncode == 2 and "--guess" in one_line_error(r)

@@ -37,8 +37,8 @@ def commented_values(code):
             if line.lstrip().startswith("print(") and "#" in line]
 
 
-def test_there_are_the_two_quick_start_blocks():
-    assert len(PYTHON_BLOCKS) == 2
+def test_there_are_the_three_quick_start_blocks():
+    assert len(PYTHON_BLOCKS) == 3
 
 
 def test_the_fmpy_quick_start_prints_w_at_lift_off_and_at_the_stop_time():
@@ -61,6 +61,17 @@ def test_the_harness_quick_start_prints_w_beside_e():
     w, e = (float(x) for x in printed[0].split())
     assert e == pytest.approx(round(E11, 5), abs=1e-12) and w == pytest.approx(E11, rel=1e-3)
     assert printed[1] == "True"
+
+
+def test_the_any_body_quick_start_runs_the_arm_to_its_e():
+    """The arm's own start is in the paradox (inconsistent: p_+ < 0, b < 0), so Theorem 1 says w/v0 -> e, with
+    e from the FMU's coefficients (eq eGeneral), here through Co-Simulation at eps = 1e-5."""
+    code = PYTHON_BLOCKS[2]
+    printed = run_block(code)
+    assert printed == commented_values(code)
+    quadrant, e = printed[0].split()
+    assert quadrant == "inconsistent" and float(printed[1]) == pytest.approx(float(e), abs=1e-4)
+    assert "CoSimulation" in code and "BodyCase" in code
 
 
 def command_block():
@@ -91,7 +102,8 @@ def test_the_painleve_commands_run_as_written_and_do_what_their_comments_say(tmp
     assert "all" in validation and "checks passed" in validation
     assert (tmp_path / "out" / "validation.md").exists()
     assert {p.name for p in (tmp_path / "out" / "figures").glob("*.png")} == {"fig_GB.png", "fig_eDelta0.png",
-                                                                               "fig_video.png", "fig_eLaw.png"}
+                                                                               "fig_video.png", "fig_eLaw.png",
+                                                                               "paradox_region.png"}
     df = pd.read_parquet(tmp_path / "out" / "sweep.parquet")
     assert len(df) == 50 * 2 * 4 * 3 and df["id"].is_unique
     assert (tmp_path / "out" / "couple.png").exists() and "impulse of F_N" in couple

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from conftest import built_fmu
-from painleve import Body, BodyCase, Case, Experiment, Outcome, run_body
+from painleve import Body, BodyCase, Case, Experiment, IWCCase, Outcome, run_body
 from painleve.fmu.body import BodyError
 from painleve.theory import analytic as A
 from painleve.theory import general as G
@@ -32,8 +32,10 @@ def test_the_floor_start_is_solved_from_the_fmus_own_outputs(rod):
     start = rod.floor_start(dict(theta=1.0, phi=0.5, x=0.0), 1.3, w0=-2e-4)
     out = rod.outputs(start, ("y", "v", "w"))
     assert out == pytest.approx(dict(y=0.0, v=1.3, w=-2e-4), abs=1e-15)
-    with pytest.raises(BodyError, match="every state is given"):
-        rod.floor_start(dict(x=0, v=1, y=0, w=0, theta=1, phi=0.5), 1.0)
+    given = dict(x=0, v=1, y=0, w=0, theta=1, phi=0.5)
+    assert rod.floor_start(given, 1.0) == given                # every state given, on the floor: itself
+    with pytest.raises(BodyError, match="not on the floor"):
+        rod.floor_start(dict(given, y=1e-3), 1.0)
 
 
 @pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
@@ -87,3 +89,24 @@ def test_the_public_face_runs_any_body_through_co_simulation():
         predicted, outcome = run_body(body, BodyCase(given=(), epsilon=1e-5))
     assert isinstance(outcome, Outcome) and outcome.iwc and outcome.events >= 2
     assert outcome.w / predicted.start_v0 == pytest.approx(predicted.e, rel=3e-3)   # Theorem 1 at eps = 1e-5
+
+
+@pytest.mark.parametrize("fmi_type", ["ModelExchange", "CoSimulation"])
+def test_the_rods_case_is_a_case_of_the_general_path_and_gives_the_analytic_e(fmi_type):
+    """The rod's Case is one kind of case: run_body takes it as it takes a BodyCase. Its prediction comes
+    from the FMU's coefficient outputs through theory.general, and must be the rod's closed form e (eq
+    eGeneral on eq coeffs at theta0, an independent path); its run is the rod's own (Experiment.run), the
+    same numbers; and the simulated w/v0 is e to Theorem 1's O(eps ln 1/eps)."""
+    case = Case(theta0=1.0, phi0=0.5, v0=1.3, delta=0.5, epsilon=1e-5)
+    assert isinstance(case, IWCCase) and isinstance(BodyCase(given=()), IWCCase)
+    assert dict(case.given)["w"] == case.w0 == 0 and case.solve == case.guess == ()
+    assert case.configuration()["theta0"] == 1.0 and BodyCase(given=(("x", 0.0),)).configuration()["given"] == (("x", 0.0),)
+    with Body(built_fmu("PainleveRod.fmu"), fmi_type=fmi_type) as body:
+        predicted, outcome = run_body(body, case)
+    with Experiment(built_fmu("PainleveRod.fmu"), fmi_type=fmi_type) as ex:
+        own = ex.run(case)
+    e = A.e(0.5, 1.0)
+    assert predicted.e == pytest.approx(e, rel=1e-12) and predicted.theorem == 1 and not predicted.hypotheses
+    assert predicted.start == case.start_values() and predicted.start_v0 == 1.3
+    assert outcome == own and outcome.state == own.state
+    assert outcome.w / case.v0 == pytest.approx(e, rel=1e-3) and outcome.w_error == pytest.approx(0, abs=1e-3)

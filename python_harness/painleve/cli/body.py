@@ -56,8 +56,17 @@ def refuse_rod_options(args, command, also=()):
                          f"for a body FMU; give the body's start values with --set NAME=VALUE")
 
 
+def refuse_body_options(args, command, options):
+    """A UsageError naming the first of a body's options (`options`: (name, default) pairs) given with another
+    value on the rod's own path, which has its own cases and cannot honour it."""
+    given = [k for k, default in options if getattr(args, k, default) != default]
+    if given:
+        raise UsageError(f"painleve {command}: --{given[0]} is an option of a body's case (with --set NAME=VALUE "
+                         f"or a body FMU); the rod's own {command} runs its own cases")
+
+
 def _case(args, epsilon):
-    from ..fmu.body_case import BodyCase
+    from ..experiments.case import BodyCase
     return BodyCase(given=tuple(assignment(s) for s in args.set), v0=args.v0, epsilon=epsilon, delta=args.delta,
                     w0=epsilon * getattr(args, "w10", 0.0), guess=tuple(assignment(s) for s in args.guess))
 
@@ -66,23 +75,16 @@ def _fmt(x):
     return "nan" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.6g}"
 
 
-def run_iwc(args, fmu):
-    from ..experiments.outcome import w_error
-    from ..fmu.body import Body
-    from ..fmu.body_case import predict
-    from ..fmu.experiment import FMI_TYPES
+def iwc_case(args):
+    """`painleve iwc`'s BodyCase from --set, --guess, --v0, --eps, --delta, --w10 (the rod's options refused)."""
     refuse_rod_options(args, "iwc")
-    case = _case(args, args.epsilon)
+    return _case(args, args.epsilon)
+
+
+def print_iwc(args, fmu, name, case, predicted, outcome):
+    """`painleve iwc`'s table or JSON for a BodyCase: the start, the theory there, the simulation."""
+    from ..experiments.outcome import w_error
     interface = "Model Exchange" if args.interface == "ME" else "Co-Simulation"
-    with Body(fmu, fmi_type=FMI_TYPES[args.interface]) as body:
-        predicted = predict(body, case)
-        if predicted.hypotheses:
-            raise UsageError(f"painleve iwc: {predicted.hypotheses} at the start "
-                             + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
-                             + "; choose a configuration inside the paradox region (painleve figures --fmu "
-                               "shows it) or another --v0")
-        outcome = body.iwc(predicted.start, case=case)
-        name = body.name
     co = predicted.coefficients
     v0 = predicted.start_v0
     error = w_error(outcome.w, v0, predicted.e)
@@ -132,6 +134,9 @@ def run_figures(args, fmu):
     if args.only:
         raise UsageError("painleve figures: --only chooses among the rod's figures; a body FMU has one, its "
                          "paradox region")
+    if args.guess:
+        raise UsageError("painleve figures: --guess picks a branch of a start solved onto the floor; the paradox "
+                         "region solves none (give its fixed start values with --set)")
     given = dict(assignment(s) for s in args.set)
     for path in paradox_figure(fmu, args.out, given=given, n=args.points, dpi=args.dpi):
         print(path)

@@ -29,34 +29,64 @@ def add_parser(sub):
 
 
 def run(args):
+    """One path for every body FMU: the case (the rod's Case from the rod's options, for an FMU of the rod's
+    model without --set; a BodyCase from --set otherwise), its start and the theory there from the FMU's own
+    coefficients (fmu.body_case.predict), its run through the interface asked for (Body.run); then the table
+    or JSON, with the rod's closed forms beside for the rod's Case."""
     from ..experiments.case import Case
-    from ..fmu.experiment import FMI_TYPES, Experiment
-    from ..sweep.run import predictions
+    from ..fmu.body import Body
+    from ..fmu.body_case import predict
+    from ..fmu.experiment import FMI_TYPES
     from ..theory import analytic as an
+    generic = False
     if args.set or args.guess or args.fmu:
         fmu = fmu_file(args.fmu, allow_body=True)
-        if body.is_body(fmu, args):
-            return body.run_iwc(args, fmu)
-    if args.v0 is None:
-        args.v0 = DEFAULTS["v0"]
-    case = Case(**{k: getattr(args, k) for k in DEFAULTS})
-    try:
-        case.check()
-    except an.HypothesisError as err:
-        raise UsageError(f"painleve iwc: {err}; {_hypothesis_hint(case, err)}") from None
-    fmu = fmu_file(args.fmu)
-    with Experiment(fmu, fmi_type=FMI_TYPES[args.interface]) as experiment:
-        outcome = experiment.run(case)
+        generic = body.is_body(fmu, args)
+    if generic:
+        case = body.iwc_case(args)
+    else:
+        if args.v0 is None:
+            args.v0 = DEFAULTS["v0"]
+        case = Case(**{k: getattr(args, k) for k in DEFAULTS})
+        try:
+            case.check()
+        except an.HypothesisError as err:
+            raise UsageError(f"painleve iwc: {err}; {_hypothesis_hint(case, err)}") from None
+        fmu = fmu_file(args.fmu)
+    with Body(fmu, fmi_type=FMI_TYPES[args.interface]) as b:
+        predicted = predict(b, case)
+        if generic and predicted.hypotheses:
+            raise UsageError(f"painleve iwc: {predicted.hypotheses} at the start "
+                             + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
+                             + "; choose a configuration inside the paradox region (painleve figures --fmu "
+                               "shows it) or another --v0")
+        outcome = b.run(case, predicted.start)
+        name = b.name
+    if generic:
+        return body.print_iwc(args, fmu, name, case, predicted, outcome)
+    return _print_rod(args, fmu, case, predicted, outcome)
+
+
+def _print_rod(args, fmu, case, general, outcome):
+    """The rod's table or JSON: the closed forms (analytic.predict) beside the simulation, and the theory
+    from the FMU's coefficients (`general`, fmu.body_case.predict), which they must equal."""
+    from ..sweep.run import predictions
+    co = general.coefficients
+    from_fmu = {"coefficients": {k: float(getattr(co, k)) for k in ("a", "b", "p_plus", "p_minus", "q_plus", "q_minus",
+                                                                    "S_w")},
+                "quadrant": general.quadrant, "theorem": general.theorem, "e": general.e, "w1_star": general.w1_star}
     if args.json:
         row = outcome.as_row()
         print(to_json({"fmu": fmu, "interface": args.interface, "case": {k: row[k] for k in DEFAULTS},
-                     "predicted": predictions(case), "regime": _regime_json(case),
+                     "predicted": predictions(case), "from_fmu": from_fmu, "regime": _regime_json(case),
                      "simulated": {k: row[k] for k in ("iwc", "w", "theta", "phi", "v", "t_return",
                                                        "compression", "stick", "lift_off", "flight_back",
                                                        "events")},
                      "errors": {k: row[k] for k in ("w_error", "phi_error", "theta_error")}}))
         return 0
     heading, rows = iwc_report(case, outcome)
+    heading.append(f"from the FMU's coefficients (theory.general): {general.quadrant}, Theorem {general.theorem}, "
+                   f"e = {_fmt(general.e)}" + (f", w1* = {_fmt(general.w1_star)}" if general.theorem == 2 else ""))
     print(f"IWC of the Painleve rod: {fmu} through {'Model Exchange' if args.interface == 'ME' else 'Co-Simulation'}")
     print("\n".join(heading))
     widths = [max(len(r[i]) for r in rows + [("quantity", "simulated", "analytic (eps -> 0)", "")])

@@ -52,22 +52,31 @@ def add_parser(sub):
     fmu_option(sw)
     interface_option(sw)
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
-    b = sw.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): a grid run in this process")
+    b = sw.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): a grid or --random draws, run in this process")
     b.add_argument("--set", action="append", default=[], metavar="NAME=SPEC",
                    help="a start value or parameter of the body and its values (a SPEC as below), e.g. "
-                        "theta1=-1.2:-0.8:9 or mu=1,2; with --eps, --delta, --v0, --w10 the grid's axes. Each "
-                        "case's other states are solved so that the contact point is on the floor. Rows: the "
-                        "case, the theory there (quadrant, p_plus, b, theorem, e, w1*) and the simulation (iwc, "
-                        "w, v, t_return, the phases): the paradox map from simulation beside p_plus < 0")
+                        "theta1=-1.2:-0.8:9 or mu=1,2 (with --random: theta1=-1.6:-0.4); with --eps, --delta, "
+                        "--v0, --w10 the sweep's axes. Each case's other states are solved so that the contact "
+                        "point is on the floor. Rows: the case, the theory there (quadrant, p_plus, b, theorem, "
+                        "e, w1*, predicts_iwc) and the simulation (iwc, w, v, t_return, the phases): the paradox "
+                        "map from simulation beside p_plus < 0")
     b.add_argument("--guess", action="append", default=[], metavar="NAME=VALUE",
                    help="where to start solving for a state that is not given (picks a branch, e.g. theta2=-1.3)")
-
+    b.add_argument("--solve", action="append", default=[], metavar="NAME",
+                   help="a parameter solved for with the states not given, e.g. H (the arm's pivot height) to put "
+                        "the tip on the floor at the drawn theta1, theta2")
+    b.add_argument("--map", metavar="PNG", help="also draw the paradox map: each case over the first two --set "
+                   "axes, the simulation's IWC beside the theory's p_plus < 0 (figures.body.sweep_map_figure)")
 
 def run(args):
     from ..fmu.experiment import FMI_TYPES
     from . import body
     if (args.set or args.guess or args.fmu) and body.is_body(fmu_file(args.fmu, probe=False, allow_body=True), args):
         return run_body(args, fmu_file(args.fmu, allow_body=True))
+    body_only = [f"--{k}" for k in ("solve", "map") if getattr(args, k)]
+    if body_only:
+        raise UsageError(f"painleve sweep: {body_only[0]} is an option of a body's sweep (--set NAME=SPEC); the "
+                         f"rod's own sweep solves nothing and draws no paradox map")
     from ..sweep.run import run_sweep
     from ..sweep.spec import PARAMS, SpecError, SweepSpec
     from ..sweep.store import ResultStore, StoreError
@@ -113,20 +122,20 @@ ROD_ONLY = ("theta0", "phi0", "alpha", "mu", "kappa", "beta")
 
 
 def run_body(args, fmu):
-    """The sweep of a body FMU (sweep.body): the grid in this process, the rows in one .csv or .parquet file."""
+    """The sweep of a body FMU (sweep.body): a grid or --random draws in this process, the rows in one .csv
+    or .parquet file, the paradox map in --map."""
     import pandas as pd
     from ..fmu.experiment import FMI_TYPES
-    from ..sweep.body import run_body_sweep, axes_of
+    from ..sweep.body import axes_of, run_body_sweep
     from ..sweep.spec import SpecError
     from .body import assignment
     given = [k for k in ROD_ONLY if getattr(args, k) is not None]
-    given += [f"{k} {getattr(args, k)}" for k, default in (("random", 0), ("seed", 0), ("scheduler", None),
-                                                            ("workers", None), ("batch", None))
+    given += [f"{k} {getattr(args, k)}" for k, default in (("scheduler", None), ("workers", None), ("batch", None))
               if getattr(args, k) != default]
     if given:
         name = given[0].split()[0]
-        raise UsageError(f"painleve sweep: --{name} is an option of the rod's sweep; a body's sweep is a grid run "
-                         f"in this process over --set NAME=SPEC, --eps, --delta, --v0, --w10")
+        raise UsageError(f"painleve sweep: --{name} is an option of the rod's sweep; a body's sweep runs in this "
+                         f"process over --set NAME=SPEC, --eps, --delta, --v0, --w10")
     texts = {}
     for item in args.set:
         name, sep, text = item.partition("=")
@@ -135,15 +144,19 @@ def run_body(args, fmu):
         texts[name.strip()] = text
     case_texts = {k: getattr(args, k) for k in ("epsilon", "delta", "v0", "w10") if getattr(args, k) is not None}
     try:
-        axes = axes_of(texts, case_texts)
+        axes = axes_of(texts, case_texts, random=args.random > 0)
     except SpecError as err:
         raise UsageError(f"painleve sweep: {err}") from None
     suffix = pathlib.Path(args.out).suffix.lower()
     if suffix not in (".csv", ".parquet", ".pq"):
         raise UsageError(f"painleve sweep: --out {args.out}: name the results file with .csv or .parquet")
     output_path(args.out, "painleve sweep: --out")
-    rows = run_body_sweep(fmu, axes, fmi_type=FMI_TYPES[args.interface],
-                          guess=tuple(assignment(g) for g in args.guess))
+    if args.map:
+        if len([a for a in axes if a.name in texts]) < 2:
+            raise UsageError("painleve sweep: --map draws the cases over the first two --set axes; give two")
+        output_path(args.map, "painleve sweep: --map")
+    rows = run_body_sweep(fmu, axes, fmi_type=FMI_TYPES[args.interface], guess=tuple(assignment(g) for g in args.guess),
+                          solve=tuple(s.strip() for s in args.solve), samples=args.random, seed=args.seed)
     df = pd.DataFrame(rows)
     if suffix == ".csv":
         df.to_csv(args.out, index=False)
@@ -152,10 +165,16 @@ def run_body(args, fmu):
     counts = df["status"].value_counts().to_dict()
     ran = df[df["iwc"].notna()]
     paradox = ran["p_plus"] < 0
+    told = df[df["predicts_iwc"].notna() & df["iwc"].notna()]
+    agree = int((told["predicts_iwc"].astype(bool) == told["iwc"].astype(bool)).sum())
     print(f"{len(df)} cases of {fmu} ({args.interface}) in {args.out} "
           f"({', '.join(f'{v} {k}' for k, v in counts.items())}); paradox map: "
           f"{int((ran['iwc'].astype(bool) & paradox).sum())} IWC of {int(paradox.sum())} runs with p_plus < 0, "
-          f"{int((ran['iwc'].astype(bool) & ~paradox).sum())} of {int((~paradox).sum())} with p_plus >= 0")
+          f"{int((ran['iwc'].astype(bool) & ~paradox).sum())} of {int((~paradox).sum())} with p_plus >= 0; "
+          f"the theory's prediction met in {agree} of {len(told)}")
+    if args.map:
+        from ..figures.body import sweep_map_figure
+        print(sweep_map_figure(df, [a.name for a in axes if a.name in texts][:2], args.map, title=pathlib.Path(fmu).name))
     return 0
 
 

@@ -48,6 +48,7 @@ def run(args):
         fmu = fmu_file(args.fmu, probe=False, allow_body=True)
         generic = body.is_body(fmu, args)
     if not generic:
+        body.refuse_body_options(args, "validate", (("v0", None), ("delta", 1.0)))
         fmu = fmu_file(args.fmu, probe=False)       # one that does not instantiate fails a check (exit 1)
     if args.report:
         output_path(args.report, "painleve validate: --report")

@@ -1,8 +1,18 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""An IWC experiment as an input record: the rod's parameters and its state on the
-floor at t = 0. What the paper predicts for it is `analytic.predict(case)`."""
+"""An IWC experiment as an input record: start values plus the configuration they came from.
+
+Every case is an `IWCCase`: the start values it fixes (`given`), the contact point's slip speed v0
+(None: that of the FMU's own start) and normal speed w0, the compliance epsilon and damping delta,
+and, for the start values it does not fix, what to solve for and where to start (`solve`, `guess`):
+the FMU's states not given, and the parameters named in `solve`, are solved so that the contact
+point is on the floor (fmu.body). Two kinds:
+
+- `BodyCase`, any body FMU's: the start values the user gives by name;
+- `Case`, the rod's: its parameters and its state on the floor at t = 0, every state given in
+  closed form (`start_values()`), so nothing is solved. What the paper predicts for it is
+  `analytic.predict(case)`, the closed forms the general theory (theory.general) reproduces."""
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from ..theory.analytic import check_case, predict
 
@@ -13,8 +23,35 @@ RANGES = {"alpha": (1e-6, 1e6), "mu": (0.0, 1e6), "delta": (0.0, 1e6), "epsilon"
           "kappa": (0.0, 1e6), "beta": (0.0, 1e6)}
 
 
+class IWCCase:
+    """What every kind of case gives a runner (see the module's docstring): `given`, ((name, value), ...);
+    `v0`, `w0`, `epsilon`, `delta`; `solve` and `guess`; `configuration()`, what it came from."""
+    solve = ()
+    guess = ()
+
+    def configuration(self):
+        """{name: value} of what the case was made from (its fields)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
 @dataclass(frozen=True)
-class Case:
+class BodyCase(IWCCase):
+    """A start on the floor of any body FMU: the start values the user gives (parameters, some states),
+    the contact point's slip speed v0 (None: that of the FMU's own start) and normal speed w0 (the FMU's
+    units), the compliance eps, delta; `solve`: parameters solved for beside the states not given (the
+    arm's pivot height H, to put the tip on the floor at given angles); `guess`: ((name, value), ...)
+    where to start solving."""
+    given: tuple          # ((name, value), ...)
+    v0: float = None
+    epsilon: float = 1e-3
+    delta: float = 1.0
+    w0: float = 0.0
+    guess: tuple = ()
+    solve: tuple = ()
+
+
+@dataclass(frozen=True)
+class Case(IWCCase):
     """The rod (alpha = m l^2/I, friction mu, damping delta, compliance epsilon) starting on
     the floor, y = 0, with slip velocity v0, angle theta0, angular velocity phi0 and vertical
     velocity w = epsilon * w10 (the inner scale of Theorem 2)."""
@@ -39,6 +76,15 @@ class Case:
                           self.kappa, self.beta))
             object.__setattr__(self, "_hash", value)
             return value
+
+    @property
+    def given(self):
+        """Every state and parameter in closed form (start_values): nothing is solved for."""
+        return tuple(self.start_values().items())
+
+    @property
+    def w0(self):
+        return self.epsilon * self.w10
 
     def check(self):
         """Raises analytic.HypothesisError, naming the hypothesis, if the paper's theorems do not cover this case."""

@@ -74,3 +74,43 @@ def paradox_figure(fmu, out_dir, *, given=None, axes=None, ranges=None, n=81, dp
                                 "grids": [g.tolist() for g in grids], "p_plus": pp.tolist(), "y": yy.tolist(),
                                 "paradox_fraction": float(np.mean(pp < 0)), "marked": marked}))
     return [str(png), str(data)]
+
+
+def sweep_map_figure(rows, axes, path, *, title="", dpi=150):
+    """Two panels over the sweep's axes (two names of its columns): left, each case as the simulation ended
+    it (IWC, no IWC, not run); right, the theory at its start: p_plus < 0 (the paradox) or not, filled where
+    Theorem 1 or 2 predicts an IWC. `rows`: sweep.body's rows (dicts, or their DataFrame). Returns the PNG's path."""
+    import matplotlib
+    import pandas as pd
+    rows = rows if isinstance(rows, pd.DataFrame) else pd.DataFrame(rows)
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    x, y = (rows[a].to_numpy(dtype=float) for a in axes)
+    ran = rows["iwc"].notna().to_numpy()
+    stuck = ran & rows["iwc"].fillna(False).astype(bool).to_numpy()
+    paradox = (rows["p_plus"] < 0).to_numpy()
+    predicted = rows["predicts_iwc"].map(lambda v: v is True or v == 1.0).to_numpy(dtype=bool)
+    told = rows["predicts_iwc"].notna().to_numpy() & ran
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 6), sharex=True, sharey=True)
+    left.scatter(x[stuck], y[stuck], c="tab:red", s=28, label="IWC (stuck, then lifted off)")
+    left.scatter(x[ran & ~stuck], y[ran & ~stuck], facecolors="none", edgecolors="tab:blue", s=28, label="no IWC")
+    left.scatter(x[~ran], y[~ran], marker="x", c="gray", s=20, label="no start on the floor, or failed")
+    left.set_title("simulation")
+    right.scatter(x[paradox & predicted], y[paradox & predicted], c="tab:red", s=28,
+                  label="p_plus < 0, Theorem 1 or 2: IWC")
+    right.scatter(x[paradox & ~predicted], y[paradox & ~predicted], facecolors="none", edgecolors="tab:red", s=28,
+                  label="p_plus < 0, no IWC predicted (or no theorem)")
+    right.scatter(x[~paradox], y[~paradox], facecolors="none", edgecolors="tab:blue", s=28, label="p_plus >= 0")
+    agree = int(np.sum(predicted[told] == stuck[told]))
+    right.set_title(f"theory (p_plus < 0); prediction met in {agree} of {int(told.sum())}")
+    for ax in (left, right):
+        ax.set_xlabel(axes[0])
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=7)
+    left.set_ylabel(axes[1])
+    fig.suptitle(f"paradox map of {title}".strip(), fontsize=10)
+    fig.tight_layout()
+    out = pathlib.Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+    return str(out)

@@ -23,7 +23,7 @@ from ..experiments.strict_json import to_json
 from ..fmu.experiment import Experiment
 from ..theory import analytic as an
 
-FIGURES = ("GB", "eDelta0", "video", "eLaw")
+FIGURES = ("GB", "eDelta0", "video", "eLaw", "paradox")     # paradox: every body FMU's (figures.body)
 
 
 # ------------------------------------------------------------------ fig:GB
@@ -186,12 +186,15 @@ def elaw_data(experiment):
 
 
 # ------------------------------------------------------------------ all of them
-def make_figures(fmu_path, out_dir, *, only=None, dpi=150):
-    """Simulates, plots and writes fig_*.png, figures.json and figures.md; returns the paths written."""
+def make_figures(fmu_path, out_dir, *, only=None, dpi=150, points=81):
+    """Simulates, plots and writes fig_*.png, figures.json and figures.md, and the paradox region every body
+    FMU gets (figures.body.paradox_figure: p_plus < 0 over theta from the FMU's outputs, on `points` grid
+    points); returns the paths written."""
     from . import plots
+    from .body import paradox_figure
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    names = list(only or FIGURES)
+    names = list(FIGURES if only is None else only)
     numbers, written = {}, []
     with Experiment(fmu_path) as experiment:
         if "GB" in names:
@@ -209,7 +212,8 @@ def make_figures(fmu_path, out_dir, *, only=None, dpi=150):
             written.append(plots.plot_elaw(numbers["eLaw"], out / "fig_eLaw.png", dpi=dpi))
     (out / "figures.json").write_text(to_json(numbers, indent=1))
     (out / "figures.md").write_text(summary_markdown(numbers, fmu_path))
-    return [str(p) for p in written] + [str(out / "figures.json"), str(out / "figures.md")]
+    region = paradox_figure(fmu_path, out, n=points, dpi=dpi) if "paradox" in names else []
+    return [str(p) for p in written] + [str(out / "figures.json"), str(out / "figures.md")] + region
 
 
 def summary_markdown(numbers, fmu_path):

@@ -10,8 +10,10 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
 - `outputs(values)`: any outputs at a state (the instance initialized from those start values);
 - `compliance(values, epsilon, delta)`: the start values that give the body that eps and delta;
 - `floor_start(values, v0)`: a consistent start, the contact point on the floor (y = 0) with
-  velocity (v0, w0), solving for the states the user did not give by Gauss-Newton on the FMU's
-  own y, v, w (finite-difference Jacobian; for the arm: theta2 and both rates from theta1);
+  velocity (v0, w0), solving for the states the user did not give (and any parameters named) by
+  Gauss-Newton on the FMU's own y, v, w (finite-difference Jacobian; for the arm: theta2 and both
+  rates from theta1, or both rates and the pivot's height H from theta1 and theta2);
+- `run(case)`: the Outcome of a case of either kind (experiments.case: the rod's Case, a BodyCase);
 - `coefficients(values)`: theory.general.Coefficients at a state, with its epsilon and delta;
 - `iwc(values)`: the run from that start until the contact point, having touched, is back at
   y = 0: its Outcome (experiments.outcome), through the interface the Body was opened with:
@@ -23,6 +25,7 @@ import math
 
 import numpy as np
 
+from ..experiments.case import Case
 from ..experiments.outcome import NoReturn, SimulationError, outcome_from_switches, outcome_of_trajectory
 from ..theory import general
 from . import cs_fast_loop, me_fast_loop
@@ -114,14 +117,22 @@ class Body:
                             f"delta {got['delta']:.6g}, not {epsilon:g}, {delta:g}")
         return out
 
-    def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40):
-        """`values` completed with the states it does not give, so that y = 0, v = v0, w = w0 (Gauss-Newton,
-        least squares: states that do not move y, v, w keep their guess, the FMU's start otherwise)."""
-        unknown = [s for s in self.states if s not in values]
-        if not unknown:
-            raise BodyError("every state is given: leave those to solve for (y = 0, v = v0, w = w0) out")
-        u = np.array([float((guess or {}).get(s, self.defaults([s]).get(s, 0.0))) for s in unknown])
+    def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40, solve=()):
+        """`values` completed with the states it does not give (and the parameters named in `solve`), so
+        that y = 0, v = v0, w = w0 (Gauss-Newton, least squares: unknowns that do not move y, v, w keep
+        their guess, the FMU's start otherwise). With nothing to solve for, `values` themselves, checked."""
+        self._known(dict.fromkeys(solve))
+        unknown = [s for s in self.states if s not in values] + [p for p in solve if p not in self.states]
         target = np.array([0.0, v0, w0])
+        tolerance = 1e-12 * (1 + abs(v0) + abs(w0))
+        if not unknown:
+            out = self.outputs(values, CONTACT)
+            r = np.array([out[n] for n in CONTACT]) - target
+            if np.any(np.abs(r) > tolerance):
+                raise BodyError(f"{self.name}: the start {values} is not on the floor with v = {v0:g}, w = {w0:g} "
+                                f"(y, v - v0, w - w0 = {r}); leave the states to solve for out")
+            return dict(values)
+        u = np.array([float((guess or {}).get(s, self.defaults([s]).get(s, 0.0))) for s in unknown])
 
         def residual(u):
             out = self.outputs(dict(values, **dict(zip(unknown, (float(x) for x in u)))), CONTACT)
@@ -132,7 +143,7 @@ class Body:
             raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values}: "
                             f"the search left the FMU's ranges ({str(err).split('the FMU stopped: ')[-1]}); "
                             f"give other states or --guess") from None
-        if np.any(np.abs(r) > 1e-12 * (1 + abs(v0) + abs(w0))):
+        if np.any(np.abs(r) > tolerance):
             raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values} "
                             f"(residual y, v - v0, w - w0 = {r}); give other states or --guess")
         return dict(values, **dict(zip(unknown, (float(x) for x in u))))
@@ -149,6 +160,17 @@ class Body:
             if np.all(np.abs(step) <= 1e-15 * (1 + np.abs(u))) or np.all(np.abs(r) <= 1e-15 * (1 + abs(v0))):
                 break
         return u, r
+
+    def run(self, case, start=None):
+        """The Outcome of a case of either kind (experiments.case) from its start on the floor (`start`:
+        predict(self, case).start, if known). The rod's Case runs as Experiment.run runs it (its horizon
+        and, through Co-Simulation, its return from the closed forms: every state of it is given, so its
+        start is its start_values); any other case from its solved start (iwc)."""
+        if isinstance(case, Case):
+            return self.experiment.run(case)
+        if start is None:
+            raise BodyError("a body's case runs from its solved start: body_case.run_body(body, case) solves it")
+        return self.iwc(start, case=case)
 
     def iwc(self, values, *, case=None, relative_tolerance=None, horizon=None, doublings=30):
         """The Outcome of the run from `values` (its case: `case`, else the values) until the contact point,

@@ -1,25 +1,16 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""One IWC case of any body FMU: the start it solves for, what the theory predicts from the FMU's
-coefficient outputs there (theory.general), and what the FMU does (fmu.body)."""
+"""One IWC case of any body FMU, of either kind (experiments.case: a BodyCase, or the rod's Case): the
+start it solves for, what the theory predicts from the FMU's coefficient outputs there (theory.general),
+and what the FMU does (fmu.body)."""
 import math
 from dataclasses import dataclass
 
+from ..experiments.case import BodyCase, Case, IWCCase
 from ..theory import general
 from ..theory.hypotheses import HypothesisError
 from .body import Body
 
-
-@dataclass(frozen=True)
-class BodyCase:
-    """A start on the floor: the start values the user gives (parameters, some states), the contact
-    point's slip speed v0 (None: that of the FMU's own start) and normal speed w0 (the FMU's units),
-    the compliance eps, delta."""
-    given: tuple          # ((name, value), ...)
-    v0: float = None
-    epsilon: float = 1e-3
-    delta: float = 1.0
-    w0: float = 0.0
-    guess: tuple = ()
+__all__ = ["BodyCase", "BodyPrediction", "Case", "IWCCase", "predict", "run_body"]
 
 
 @dataclass(frozen=True)
@@ -36,10 +27,11 @@ class BodyPrediction:
     hypotheses: str       # "" if Theorem 1 or 2 covers the start, else what fails
 
 
-def predict(body: Body, case: BodyCase) -> BodyPrediction:
+def predict(body: Body, case: IWCCase) -> BodyPrediction:
+    """The start of `case` on the floor and the theory there, from the FMU's own coefficient outputs."""
     values = body.compliance(dict(case.given), case.epsilon, case.delta)
     v0 = body.outputs(values, ("v",))["v"] if case.v0 is None else case.v0
-    start = body.floor_start(values, v0, case.w0, guess=dict(case.guess))
+    start = body.floor_start(values, v0, case.w0, guess=dict(case.guess), solve=tuple(case.solve))
     co, eps, delta = body.coefficients(start)
     theorem = int(general.theorem_of(co))
     failed = ""
@@ -60,8 +52,9 @@ def predict(body: Body, case: BodyCase) -> BodyPrediction:
                           theorem=theorem, e=e, w1_star=w1s, hypotheses=failed)
 
 
-def run_body(body: Body, case: BodyCase):
-    """(BodyPrediction, Outcome) of one case, through the interface `body` was opened with."""
+def run_body(body: Body, case: IWCCase):
+    """(BodyPrediction, Outcome) of one case of either kind, through the interface `body` was opened with
+    (Body.run)."""
     predicted = predict(body, case)
-    return predicted, body.iwc(predicted.start, case=case)
+    return predicted, body.run(case, predicted.start)
 

@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """A sweep of any body FMU (`painleve sweep --fmu TwoLinkArm.fmu --set theta1=-1.2:-0.8:9 --set mu=1,2`):
-a grid over start values and parameters the user names, with eps, delta, v0 and w10, each case run
-through fmu.body (its start solved onto the floor, the theory from the FMU's own coefficients) in
-this process. A row holds the case, the theory there (the quadrant, p_plus, b, the theorem, e, w1*)
-and the simulation (whether the contact point stuck, w and v at the return, the phases), and the
-start solved (start_NAME): over the
-configurations, the paradox map from simulation (`iwc`) beside the theory's p_plus < 0.
+a grid, or `samples` random draws (seeded: draw `id` is numpy's default_rng([seed, id]), as the rod's
+sweep draws), over start values and parameters the user names, with eps, delta, v0 and w10, each case
+(an experiments.case.BodyCase) run through fmu.body (its start solved onto the floor, with the
+parameters named in `solve`, the theory from the FMU's own coefficients) in this process. A row holds
+the case, the theory there (the quadrant, p_plus, b, the theorem, e, w1*, and what it predicts:
+`predicts_iwc`) and the simulation (whether the contact point stuck, w and v at the return, the
+phases), and the start solved (start_NAME): over the configurations, the paradox map from simulation
+(`iwc`) beside the theory's p_plus < 0 (figures.body.sweep_map_figure draws the two).
 
 A case runs whenever a start on the floor is found, inside the theorems' hypotheses ("ok") or not
 ("outside": simulated all the same, for the map); a run that is not back on the floor within
@@ -13,9 +15,12 @@ A case runs whenever a start on the floor is found, inside the theorems' hypothe
 import itertools
 import math
 
+from ..experiments.case import BodyCase
 from ..experiments.outcome import NoReturn, SimulationError, w_error
 from ..fmu.body import Body, BodyError
-from ..fmu.body_case import BodyCase, predict
+from ..fmu.body_case import predict
+from ..theory import general
+from .draws import uniform
 from .spec import Axis, SpecError
 
 CASE_AXES = ("epsilon", "delta", "v0", "w10")     # the case's own axes; the start values are the user's names
@@ -23,41 +28,71 @@ DOUBLINGS = 8
 PHASES = ("compression", "stick", "lift_off", "flight_back")
 
 
-def axes_of(given, case_texts):
-    """The grid's axes: `given` {name: SPEC} (start values, parameters), and `case_texts` {eps, delta, v0,
-    w10: SPEC} for those given; a SPEC as the rod's sweep reads it (a value, a list, lo:hi:n[:log])."""
+def axes_of(given, case_texts, *, random=False):
+    """The axes: `given` {name: SPEC} (start values, parameters), and `case_texts` {eps, delta, v0, w10:
+    SPEC} for those given; a SPEC as the rod's sweep reads it (a value, a list, lo:hi:n[:log] in a grid,
+    lo:hi[:log] in a random sample)."""
     unknown = [k for k in case_texts if k not in CASE_AXES]
     if unknown:
         raise SpecError(f"a body's sweep has no case parameter {unknown[0]!r}; give start values with --set")
-    return tuple(Axis.parse(name, text, random=False) for name, text in {**given, **case_texts}.items())
+    return tuple(Axis.parse(name, text, random=random) for name, text in {**given, **case_texts}.items())
 
 
-def cases(axes, guess=()):
-    """(id, {axis: value}, BodyCase) of every grid point, row-major in the axes' order."""
-    for i, values in enumerate(itertools.product(*(a.grid().tolist() for a in axes))):
-        point = dict(zip((a.name for a in axes), values))
-        case_values = {k: point.pop(k) for k in CASE_AXES if k in point}
-        eps = case_values.get("epsilon", 1e-3)
-        yield i, dict(zip((a.name for a in axes), values)), BodyCase(
-            given=tuple(point.items()), v0=case_values.get("v0"), epsilon=eps, delta=case_values.get("delta", 1.0),
-            w0=eps * case_values.get("w10", 0.0), guess=tuple(guess))
+def points(axes, samples=0, seed=0):
+    """(id, {axis: value}) of every grid point, row-major in the axes' order, or of `samples` random draws
+    (draw id: uniform(seed, [id]), so a draw does not depend on how many are made)."""
+    names = [a.name for a in axes]
+    if not samples:
+        yield from enumerate(dict(zip(names, values)) for values in itertools.product(*(a.grid().tolist()
+                                                                                         for a in axes)))
+        return
+    u = uniform(seed, range(samples), len(axes))
+    for i in range(samples):
+        yield i, {a.name: float(a.sample(u[i, k])) for k, a in enumerate(axes)}
 
 
-def run_body_sweep(fmu, axes, *, fmi_type="ModelExchange", guess=(), progress=None):
-    """The rows (dicts) of the grid `axes` on the body FMU, through the interface `fmi_type`."""
+def case_of(point, guess=(), solve=()):
+    """The BodyCase of a point {axis: value}: eps, delta, v0, w10 from their axes, the rest start values."""
+    given = {k: v for k, v in point.items() if k not in CASE_AXES}
+    eps = point.get("epsilon", 1e-3)
+    return BodyCase(given=tuple(given.items()), v0=point.get("v0"), epsilon=eps, delta=point.get("delta", 1.0),
+                    w0=eps * point.get("w10", 0.0), guess=tuple(guess), solve=tuple(solve))
+
+
+def cases(axes, guess=(), solve=(), samples=0, seed=0):
+    """(id, {axis: value}, BodyCase) of every point (see points)."""
+    for i, point in points(axes, samples, seed):
+        yield i, point, case_of(point, guess, solve)
+
+
+def run_body_sweep(fmu, axes, *, fmi_type="ModelExchange", guess=(), solve=(), samples=0, seed=0, progress=None):
+    """The rows (dicts) of the grid `axes`, or of `samples` draws from them, on the body FMU, through the
+    interface `fmi_type`; `solve`: parameters solved for with the states not given (fmu.body.floor_start)."""
     rows = []
     with Body(fmu, fmi_type=fmi_type) as body:
-        for case_id, point, case in cases(axes, guess):
+        for case_id, point, case in cases(axes, guess, solve, samples, seed):
             rows.append(_row(body, case_id, point, case))
             if progress:
                 progress(len(rows))
     return rows
 
 
+def predicts_iwc(co, w10, w1_star, hypotheses):
+    """What the theory predicts from the coefficients at the start: no IWC outside the paradox (p_plus >= 0);
+    inside it, where Theorem 1 or 2 covers the start (`hypotheses` empty), IWC for b < 0 and, for b > 0,
+    below the separatrix (w10 < w1*); None where the theorems say nothing."""
+    if not general.paradox(co):
+        return False
+    if general.theorem_of(co) == 2:
+        return bool(w10 < w1_star) if not hypotheses or "starts moving down" in hypotheses else None
+    return None if hypotheses else True
+
+
 def _row(body, case_id, point, case):
     nan = math.nan
     row = dict(id=case_id, status="failed", message="", **point)
-    row.update(epsilon=case.epsilon, delta=case.delta, v0=case.v0 if case.v0 is not None else nan, quadrant="", p_plus=nan, b=nan, theorem=0, e=nan, w1_star=nan, iwc=None, w=nan, v=nan,
+    row.update(epsilon=case.epsilon, delta=case.delta, v0=case.v0 if case.v0 is not None else nan, quadrant="",
+               p_plus=nan, b=nan, theorem=0, e=nan, w1_star=nan, predicts_iwc=None, iwc=None, w=nan, v=nan,
                t_return=nan, **dict.fromkeys(PHASES, nan), events=-1, w_error=nan)
     try:
         predicted = predict(body, case)
@@ -68,6 +103,7 @@ def _row(body, case_id, point, case):
     row.update({f"start_{k}": v for k, v in predicted.start.items() if k not in point})
     row.update(v0=predicted.start_v0, quadrant=predicted.quadrant, p_plus=float(co.p_plus), b=float(co.b),
                theorem=predicted.theorem, e=predicted.e, w1_star=predicted.w1_star,
+               predicts_iwc=predicts_iwc(co, case.w0 / case.epsilon, predicted.w1_star, predicted.hypotheses),
                status="outside" if predicted.hypotheses else "ok", message=predicted.hypotheses)
     try:
         outcome = body.iwc(predicted.start, case=case, doublings=DOUBLINGS)
