@@ -124,6 +124,22 @@ void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX]);
 double model_flight_sample_step(const ModelFlight *f, double t);
 #endif
 
+/* ------------------------------------- the contact in the error control (optional) */
+
+/* A model whose config.h defines MODEL_GAP_ROWS has states that are not its contact's gap and
+ * normal rate (a linkage's angles, whose size says nothing of the gap's eps^2): it gives the two
+ * as linear functions of a change of state at x (rows), with their values and nominals there,
+ * so that an embedded integrator's error control holds them to their own scale, as it holds a
+ * state to its nominal (docs/general_body.md §1). */
+#ifdef MODEL_GAP_ROWS
+typedef struct {
+    double row[2][MODEL_NX]; /* d gap/dx, d normal rate/dx */
+    double value[2], nominal[2];
+} ModelGapRows;
+
+void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], ModelGapRows *r);
+#endif
+
 /* ------------------------------------------- step means (Co-Simulation) */
 
 /* The step that began at model_step_begin is done, after `elapsed` (> 0; 0 when

@@ -87,6 +87,22 @@ static void arm_nominals(const void *params, double epsilon, double nominal[])
     nominal[ARM_OMEGA1] = nominal[ARM_OMEGA2] = epsilon;
 }
 
+/* The tip's height and normal rate are sums over the links: y = H + l1 sin theta1 + l2 sin theta2,
+ * w = W_N omega, so dy/dtheta = W_N and dw/dtheta_i = -l_i sin theta_i omega_i. */
+static void arm_gap_rows(const void *params, const double x[], double *y, double *w, double dy_dq[],
+                         double dw_dq[])
+{
+    const ArmBody *b = params;
+    const double s1 = sin(x[ARM_THETA1]), c1 = cos(x[ARM_THETA1]), s2 = sin(x[ARM_THETA2]), c2 = cos(x[ARM_THETA2]);
+    dy_dq[0] = b->l1 * c1;
+    dy_dq[1] = b->l2 * c2;
+    dw_dq[0] = -b->l1 * s1 * x[ARM_OMEGA1];
+    dw_dq[1] = -b->l2 * s2 * x[ARM_OMEGA2];
+    *y = b->H + b->l1 * s1 + b->l2 * s2;
+    *w = dy_dq[0] * x[ARM_OMEGA1] + dy_dq[1] * x[ARM_OMEGA2];
+}
+
 /* No coordinate is the tip's x: a stick begins by the friction impulse that stops the slip. */
 const Body arm_body = { .dof = 2, .position = { ARM_THETA1, ARM_THETA2 }, .velocity = { ARM_OMEGA1, ARM_OMEGA2 },
-                        .slip_coordinate = -1, .evaluate = arm_evaluate, .nominals = arm_nominals };
+                        .slip_coordinate = -1, .evaluate = arm_evaluate, .nominals = arm_nominals,
+                        .gap_rows = arm_gap_rows };

@@ -141,6 +141,25 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     nominal[ARM_OMEGA2] /= time_unit(m);
 }
 
+/* The core's rows over the scaled state, in SI: y = L ys, w = (L/T) ws with rates omega = omegas/T. */
+void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], ModelGapRows *r)
+{
+    (void)time;
+    Trial t;
+    const Contact c = contact_at(m, x, &t);
+    ContactGapRows g;
+    contact_gap_rows(&c, t.xs, &g);
+    const double L = m->l1 + m->l2, T = time_unit(m), to_state[ARM_NX] = { 1, 1, T, T };
+    for (int i = 0; i < ARM_NX; ++i) {
+        r->row[0][i] = L * g.y[i] * to_state[i];
+        r->row[1][i] = L / T * g.w[i] * to_state[i];
+    }
+    r->value[0] = L * g.y_value;
+    r->value[1] = L / T * g.w_value;
+    r->nominal[0] = L * g.y_scale;
+    r->nominal[1] = L / T * g.w_scale;
+}
+
 bool model_input_set(Model *m, unsigned int vr, double time)
 {
     (void)m, (void)vr, (void)time;   /* the arm has no inputs */

@@ -15,6 +15,10 @@
 #define MODEL_NX ARM_NX
 #define MODEL_NZ CONTACT_NZ
 
+/* The angles are the states: the tip's gap and normal rate enter the error control as rows
+ * (model.h, model_gap_rows_at). */
+#define MODEL_GAP_ROWS
+
 /* No analytic partial derivatives yet (providesDirectionalDerivative="false" in the XML):
  * fmi2GetDirectionalDerivative and its FMI 3.0 twins answer this error. */
 #define MODEL_NO_PARTIALS "TwoLinkArm provides no directional derivatives (providesDirectionalDerivative = false)"
