@@ -325,10 +325,12 @@ ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const doubl
     /* in flight the force indicator is min(-y/eps, h): the smaller one crossed */
     const bool force = crossed & 1u << CONTACT_Z_FORCE && (m.contact || h.h < -s.y / eps);
     const bool gap = crossed & 1u << CONTACT_Z_Y || (crossed & 1u << CONTACT_Z_FORCE && !force);
-    /* on a surface where the root finder could have put it: within the indicator's change over dt */
+    /* on a surface where the root finder could have put it: within the indicator's change over dt,
+     * or where the state's own resolution puts y (an angle's ulp moves a linkage's tip) */
     return (ContactSurfaces){
-        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise,
-        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s),
+        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise + s.y_resolution,
+        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s) +
+                                           fabs(h.h_yh) * s.y_resolution / eps,
     };
 }
 

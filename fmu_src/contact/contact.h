@@ -48,6 +48,7 @@ typedef struct {
 typedef struct {
     double x, y, v, w;              /* the contact point: g_T, g_N and their rates */
     double y_noise, w_noise, v_noise; /* their rounding errors as computed (0 for a state itself) */
+    double y_resolution;            /* the smallest move of y the state can make (0: y is a state) */
     double free[BODY_MAX_DOF];      /* u' with no contact force */
     double normal[BODY_MAX_DOF];    /* u' per unit F_N: M^-1 W_N^T */
     double friction[BODY_MAX_DOF];  /* u' per unit F_T, taken with a minus sign: M^-1 W_T^T */
