@@ -67,6 +67,21 @@ BodyState contact_body(const Contact *c, const double x[])
     return s;
 }
 
+bool contact_gap_rows(const Contact *c, const double x[], ContactGapRows *r)
+{
+    const Body *b = c->body;
+    if (!b->gap_rows) return false;
+    double dy_dq[BODY_MAX_DOF], dw_dq[BODY_MAX_DOF];
+    *r = (ContactGapRows){ .y_scale = c->law.epsilon * c->law.epsilon, .w_scale = c->law.epsilon };
+    b->gap_rows(c->params, x, &r->y_value, &r->w_value, dy_dq, dw_dq);
+    for (int i = 0; i < b->dof; ++i) {
+        r->y[b->position[i]] = dy_dq[i];
+        r->w[b->position[i]] = dw_dq[i];
+        r->w[b->velocity[i]] = dy_dq[i];
+    }
+    return true;
+}
+
 /* num/G_TT, 0 where G_TT = 0: a contact point that cannot slip at all (W_T = 0, so G_TN = 0
  * too) has no sticking friction to find; a body with G_TT > 0 (the rod: G_TT >= 1) never comes here. */
 static double per_G_TT(double num, const BodyState *s)
@@ -310,10 +325,12 @@ ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const doubl
     /* in flight the force indicator is min(-y/eps, h): the smaller one crossed */
     const bool force = crossed & 1u << CONTACT_Z_FORCE && (m.contact || h.h < -s.y / eps);
     const bool gap = crossed & 1u << CONTACT_Z_Y || (crossed & 1u << CONTACT_Z_FORCE && !force);
-    /* on a surface where the root finder could have put it: within the indicator's change over dt */
+    /* on a surface where the root finder could have put it: within the indicator's change over dt,
+     * or where the state's own resolution puts y (an angle's ulp moves a linkage's tip) */
     return (ContactSurfaces){
-        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise,
-        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s),
+        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise + s.y_resolution,
+        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s) +
+                                           fabs(h.h_yh) * s.y_resolution / eps,
     };
 }
 

@@ -48,6 +48,7 @@ typedef struct {
 typedef struct {
     double x, y, v, w;              /* the contact point: g_T, g_N and their rates */
     double y_noise, w_noise, v_noise; /* their rounding errors as computed (0 for a state itself) */
+    double y_resolution;            /* the smallest move of y the state can make (0: y is a state) */
     double free[BODY_MAX_DOF];      /* u' with no contact force */
     double normal[BODY_MAX_DOF];    /* u' per unit F_N: M^-1 W_N^T */
     double friction[BODY_MAX_DOF];  /* u' per unit F_T, taken with a minus sign: M^-1 W_T^T */
@@ -67,6 +68,10 @@ typedef struct {
     int slip_coordinate;
     void (*evaluate)(const void *params, const double x[], BodyState *s);
     void (*nominals)(const void *params, double epsilon, double nominal[]);
+    /* y, w, dy/dq and dw/dq at x (dw/du is dy/dq): for a body whose gap is not one of its
+     * coordinates, so that an integrator can hold y and w to their own scale (contact_gap_rows);
+     * else NULL. */
+    void (*gap_rows)(const void *params, const double x[], double *y, double *w, double dy_dq[], double dw_dq[]);
 } Body;
 
 /* A body with its parameters and the contact law: what every function below runs on. */
@@ -110,6 +115,16 @@ typedef struct {
 ContactCoeffs contact_coeffs(const ContactLaw *law, const BodyState *s);
 
 BodyState contact_body(const Contact *c, const double x[]);
+
+/* The gap y and the normal rate w at x as linear functions of a change of state: rows over
+ * the state vector, y and w there, and their scales (eps^2 and eps); false, and nothing
+ * written, for a body whose coordinates hold y and w themselves (Body.gap_rows NULL). */
+typedef struct {
+    double y[CONTACT_MAX_NX], w[CONTACT_MAX_NX]; /* dy/dx, dw/dx */
+    double y_value, w_value, y_scale, w_scale;
+} ContactGapRows;
+
+bool contact_gap_rows(const Contact *c, const double x[], ContactGapRows *r);
 
 /* Whether mode m's fast normal motion at x grows: a slip in contact with p_s < 0 (the paradox),
  * where F_N grows from any start and the body either sticks or lifts off (Theorem 1). */

@@ -25,6 +25,12 @@ static ContactSurfaces start_surfaces(const BodyState *s)
     return (ContactSurfaces){ .gap = at_rest, .still = at_rest };
 }
 
+bool contact_start_on_floor(const Contact *c, const double x[])
+{
+    const BodyState s = contact_body(c, x);
+    return start_surfaces(&s).gap;
+}
+
 ContactMode contact_initial_mode(const Contact *c, double x[])
 {
     /* Slip follows the sign of v until the rules decide. */
@@ -119,19 +125,28 @@ static bool same_instant(const ContactRecord *r, const Instant *i, double time)
     return time - r->instant <= i->width;
 }
 
+/* The time's limit at a contact faster than t resolves, after `what` happened there. */
+static void describe_resolution(const ContactRecord *r, const Instant *i, double y, double time, const char *what,
+                                const char *fired, ModelEvent *e)
+{
+    snprintf(e->text, sizeof e->text,
+             "%s, to t = %.17g: t cannot resolve the contact at this time (its time scale %.3g is below the %.3g "
+             "to which events at this t can be placed, %d ulps); the boundary %.300s chattered (contact = %d, "
+             "mode = %+d, y = %g): start nearer t = 0, or with a softer contact",
+             what, time, i->time_scale, i->resolution, CONTACT_EVENT_RESOLUTION_ULPS, fired, r->mode.contact,
+             r->mode.slip, y);
+}
+
 /* The guard's message: a Zeno run, or (the contact faster than t resolves) the time's limit. */
 static void describe_guard(const ContactRecord *r, const Contact *c, const double x[], const Instant *i,
                            double time, const char *fired, ModelEvent *e)
 {
     const BodyState s = contact_body(c, x);
+    char what[96];
+    snprintf(what, sizeof what, "%d events each within %.3g of the one before", CONTACT_MAX_EVENTS_AT_ONE_INSTANT,
+             i->width);
     if (i->time_scale < i->resolution)
-        snprintf(e->text, sizeof e->text,
-                 "%d events each within %.3g of the one before, to t = %.17g: t cannot resolve the contact at "
-                 "this time (its time scale %.3g is below the %.3g to which events at this t can be placed, "
-                 "%d ulps); the boundary %.300s chattered (contact = %d, mode = %+d, y = %g): start nearer t = 0, "
-                 "or with a softer contact",
-                 CONTACT_MAX_EVENTS_AT_ONE_INSTANT, i->width, time, i->time_scale, i->resolution,
-                 CONTACT_EVENT_RESOLUTION_ULPS, fired, r->mode.contact, r->mode.slip, s.y);
+        describe_resolution(r, i, s.y, time, what, fired, e);
     else
         snprintf(e->text, sizeof e->text,
                  "%d events at t = %.17g without progress in time (a Zeno run: the modes chatter at the boundary "
@@ -172,6 +187,14 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
     e->switched = before.contact != r->mode.contact || before.slip != r->mode.slip;
     e->states_changed = moved;
     if (e->describe || result != CONTACT_SETTLED) describe_fired(r, before, initial, z, fired, sizeof fired);
+    if (result != CONTACT_SETTLED && instant.time_scale < instant.resolution) {
+        /* the surfaces cannot be left where the time cannot place the events that would */
+        describe_resolution(r, &instant, contact_body(c, x).y, time,
+                            result == CONTACT_PING_PONG ? "the mode decision does not settle"
+                                                        : "the state cannot be moved off a switching surface",
+                            fired, e);
+        return false;
+    }
     if (result != CONTACT_SETTLED) {
         snprintf(e->text, sizeof e->text, result == CONTACT_PING_PONG
                  ? "mode decision does not settle at t = %.17g (contact = %d, mode = %+d): rules ping-pong"
@@ -181,8 +204,9 @@ bool contact_record_event(ContactRecord *r, const Contact *c, double x[], const 
     }
     if (e->switched) record_switch(r, before, time);
     e->fast_growth = contact_fast_growth(c, r->mode, x);
-    /* a return moved the state off a surface; an update that switched and moved nothing (an input) is none */
-    r->returns = e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
+    /* a return moved the state off a surface; an update that switched and moved nothing (an input)
+     * is none, nor is the start's move off the surfaces it was given on */
+    r->returns = initial || e->switched || !moved ? 0 : (r->returns < CONTACT_MAX_RETURNS ? r->returns + 1 : CONTACT_MAX_RETURNS);
     if (e->describe)
         snprintf(e->text, sizeof e->text, "t = %.17g: indicator %s; contact %d -> %d, mode %+d -> %+d%s", time, fired,
                  before.contact, r->mode.contact, before.slip, r->mode.slip, moved ? "; continuous states changed" : "");

@@ -87,6 +87,41 @@ static double norm(const Erk *e, const double v[NX], const double y0[NX], const 
     return sqrt(sum / NX);
 }
 
+#ifdef MODEL_GAP_ROWS
+/* norm() with the model's gap and normal rate (rows r at y0) as two more components, weighted
+ * as a state is: rtol nominal + rtol max of their values at y0 and, linearized, at y1. */
+static double norm_with_rows(const Erk *e, const double v[NX], const double y0[NX], const double y1[NX],
+                             const ModelGapRows *r)
+{
+    const double n = norm(e, v, y0, y1);
+    double sum = n * n * NX;
+    for (int k = 0; k < 2; ++k) {
+        double dv = 0, dy = 0;
+        for (int i = 0; i < NX; ++i) {
+            dv += r->row[k][i] * v[i];
+            dy += r->row[k][i] * (y1[i] - y0[i]);
+        }
+        const double s = e->rtol * (r->nominal[k] + fmax(fabs(r->value[k]), fabs(r->value[k] + dy)));
+        sum += (dv / s) * (dv / s);
+    }
+    return sqrt(sum / (NX + 2));
+}
+#endif
+
+/* A trial step's error norm: its error err from y0 to y1 (with the model's rows where it has them). */
+static double step_error(const Erk *e, const Model *m, double t, const double err[NX], const double y0[NX],
+                         const double y1[NX])
+{
+#ifdef MODEL_GAP_ROWS
+    ModelGapRows r;
+    model_gap_rows_at(m, t, y0, &r);
+    return norm_with_rows(e, err, y0, y1, &r);
+#else
+    (void)m, (void)t;
+    return norm(e, err, y0, y1);
+#endif
+}
+
 /* The first step from the scales of y and f (HNW II.4, "starting step size"), at most `span`;
  * 0 if a right-hand side is not finite. */
 static double first_step(Erk *e, const Model *m, double t, double span)
@@ -131,7 +166,7 @@ static double try_step(Erk *e, const Model *m, double t, double h, Trial *s)
     if (!rhs(e, m, t + h, s->y1, k[6]) || !erk_all_finite(s->y1, NX)) return INFINITY;
     for (int i = 0; i < NX; ++i)
         err[i] = h * (E1 * k[0][i] + E3 * k[2][i] + E4 * k[3][i] + E5 * k[4][i] + E6 * k[5][i] + E7 * k[6][i]);
-    return norm(e, err, e->y, s->y1);
+    return step_error(e, m, t, err, e->y, s->y1);
 }
 
 /* h |lambda| along the step's last two stages (HNW IV.2 (2.26)). */

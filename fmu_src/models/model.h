@@ -20,6 +20,8 @@
  *                        model_decide_initial_mode, model_begin_integration and
  *                        model_event_update; default: no indicators and no modes;
  *   MODEL_CLOSED_FLIGHT  provides the model_flight_* functions (below); default: none;
+ *   MODEL_GAP_ROWS       provides model_gap_rows_at (below: a contact's gap that is no
+ *                        state); default: the states' own error control alone;
  *   MODEL_NO_PARTIALS    (a message) has no partial derivatives, and provides no
  *                        model_calculated_partial.
  * Every other function below a model provides, except those model_common.c defines. */
@@ -147,6 +149,22 @@ void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX]);
 /* The longest time, from t on, over which each event indicator's sign at the two ends
  * shows whether it has a root (the physics bounds it: the rotation, the gap's curvature). */
 double model_flight_sample_step(const ModelFlight *f, double t);
+#endif
+
+/* ------------------------------------- the contact in the error control (optional) */
+
+/* A model whose config.h defines MODEL_GAP_ROWS has states that are not its contact's gap and
+ * normal rate (a linkage's angles, whose size says nothing of the gap's eps^2): it gives the two
+ * as linear functions of a change of state at x (rows), with their values and nominals there,
+ * so that an embedded integrator's error control holds them to their own scale, as it holds a
+ * state to its nominal (docs/general_body.md §1). */
+#ifdef MODEL_GAP_ROWS
+typedef struct {
+    double row[2][MODEL_NX]; /* d gap/dx, d normal rate/dx */
+    double value[2], nominal[2];
+} ModelGapRows;
+
+void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], ModelGapRows *r);
 #endif
 
 /* ------------------------------------------- step means (Co-Simulation) */

@@ -15,9 +15,18 @@
 /* The arm's state in the core's vector: angles, then their rates (the XML's order). */
 enum { ARM_THETA1, ARM_THETA2, ARM_OMEGA1, ARM_OMEGA2, ARM_NX };
 
+/* The gap is measured from a reference configuration: y = y_ref + l1 (sin theta1 - sin ref1)
+ * + l2 (sin theta2 - sin ref2), the differences in a form exact near the reference. Taken at the
+ * start, it keeps a tip placed on the floor at y = 0 exactly, where the angles' own rounding
+ * (an ulp of theta times l) would perturb a grazing start by the square root of it. */
 typedef struct {
     double m1, l1, J1, m2, l2, J2, H; /* scaled: m1 + m2 = 1, l1 + l2 = 1 */
+    double ref1, ref2;                /* the reference angles */
+    double y_ref, y_ref_noise;        /* the gap there, and its rounding error */
 } ArmBody;
+
+/* The reference at angles (ref1, ref2): y_ref computed, or 0 exactly when `on_floor`. */
+void arm_set_reference(ArmBody *b, double ref1, double ref2, bool on_floor);
 
 /* The core's description of the arm (Body; params: an ArmBody). */
 extern const Body arm_body;

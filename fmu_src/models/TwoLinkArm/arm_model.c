@@ -24,6 +24,14 @@ static void scaled(const Model *m, ArmBody *b, ContactLaw *law)
     const double M = m->m1 + m->m2, L = m->l1 + m->l2, ML2 = M * L * L;
     *b = (ArmBody){ .m1 = m->m1 / M, .l1 = m->l1 / L, .J1 = m->J1 / ML2,
                     .m2 = m->m2 / M, .l2 = m->l2 / L, .J2 = m->J2 / ML2, .H = m->H / L };
+    if (m->referenced) {
+        b->ref1 = m->reference[0];
+        b->ref2 = m->reference[1];
+        b->y_ref = m->reference[2];
+        b->y_ref_noise = m->reference[3];
+    } else {
+        arm_set_reference(b, 0, 0, false);
+    }
     *law = (ContactLaw){ .mu = m->mu, .delta = m->c / sqrt(M * m->k), .epsilon = sqrt(M * m->g / (m->k * L)),
                          .kappa = m->kappa, .beta = m->beta };
 }
@@ -130,6 +138,25 @@ void model_get_nominals(const Model *m, double nominal[MODEL_NX])
     nominal[ARM_OMEGA2] /= time_unit(m);
 }
 
+/* The core's rows over the scaled state, in SI: y = L ys, w = (L/T) ws with rates omega = omegas/T. */
+void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], ModelGapRows *r)
+{
+    (void)time;
+    Trial t;
+    const Contact c = contact_at(m, x, &t);
+    ContactGapRows g;
+    contact_gap_rows(&c, t.xs, &g);
+    const double L = m->l1 + m->l2, T = time_unit(m), to_state[ARM_NX] = { 1, 1, T, T };
+    for (int i = 0; i < ARM_NX; ++i) {
+        r->row[0][i] = L * g.y[i] * to_state[i];
+        r->row[1][i] = L / T * g.w[i] * to_state[i];
+    }
+    r->value[0] = L * g.y_value;
+    r->value[1] = L / T * g.w_value;
+    r->nominal[0] = L * g.y_scale;
+    r->nominal[1] = L / T * g.w_scale;
+}
+
 void model_derivatives_at(const Model *m, double time, const double x[MODEL_NX], double dx[MODEL_NX])
 {
     (void)time;
@@ -180,8 +207,22 @@ static void unscale_changes(Model *m, const double xs[ARM_NX])
         if (xs[j] != m->xs[j]) m->x[j] = j >= ARM_OMEGA1 ? xs[j] / T : xs[j];
 }
 
+/* The gap's reference at the start's angles: y = 0 exactly if the start is on the floor at rest. */
+static void take_reference(Model *m)
+{
+    model_update(m);
+    const Contact c = contact_of(&m->body, &m->law);
+    const bool on_floor = contact_start_on_floor(&c, m->xs);
+    arm_set_reference(&m->body, m->xs[ARM_THETA1], m->xs[ARM_THETA2], on_floor);
+    const double reference[4] = { m->body.ref1, m->body.ref2, m->body.y_ref, m->body.y_ref_noise };
+    memcpy(m->reference, reference, sizeof reference);
+    m->referenced = true;
+    model_touch(m);
+}
+
 void model_start(Model *m, double time, char *text, size_t size)
 {
+    take_reference(m);
     model_update(m);
     const Contact c = contact_of(&m->body, &m->law);
     double xs[ARM_NX];
@@ -214,5 +255,9 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 
 const char *model_internals_implausible(const Model *m)
 {
+    for (int i = 0; i < 2; ++i)
+        if (!(fabs(m->reference[i]) <= ARM_STATE_BOUND)) return i ? "theta2_ref" : "theta1_ref";
+    if (!(fabs(m->reference[2]) <= 1e6)) return "y_ref";
+    if (!(m->reference[3] >= 0 && m->reference[3] <= 1e-6)) return "y_ref_noise";
     return contact_record_implausible(&m->run);
 }
