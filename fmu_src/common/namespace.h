@@ -22,6 +22,7 @@
 
 /* contact.c, contact_events.c, contact_record.c: the contact core over a body */
 #define contact_body NAMESPACED(contact_body)
+#define contact_gap_rows NAMESPACED(contact_gap_rows)
 #define contact_coeffs NAMESPACED(contact_coeffs)
 #define contact_compliance NAMESPACED(contact_compliance)
 #define contact_decide_mode NAMESPACED(contact_decide_mode)
@@ -34,6 +35,7 @@
 #define contact_indicator_name NAMESPACED(contact_indicator_name)
 #define contact_indicator_noise NAMESPACED(contact_indicator_noise)
 #define contact_initial_mode NAMESPACED(contact_initial_mode)
+#define contact_start_on_floor NAMESPACED(contact_start_on_floor)
 #define contact_jacobian_differences NAMESPACED(contact_jacobian_differences)
 #define contact_move_off_surfaces NAMESPACED(contact_move_off_surfaces)
 #define contact_normal_force NAMESPACED(contact_normal_force)
@@ -59,6 +61,7 @@
 /* fmu_src/models/TwoLinkArm/arm_body.c: the arm, the core's second body */
 #define arm_body NAMESPACED(arm_body)
 #define arm_mass_matrix NAMESPACED(arm_mass_matrix)
+#define arm_set_reference NAMESPACED(arm_set_reference)
 
 /* fmu_src/models/PainleveRodSI/rod_si_partials.c */
 #define si_partial NAMESPACED(si_partial)
@@ -79,6 +82,7 @@
 #define model_flight_at NAMESPACED(model_flight_at)
 #define model_flight_begin NAMESPACED(model_flight_begin)
 #define model_flight_sample_step NAMESPACED(model_flight_sample_step)
+#define model_gap_rows_at NAMESPACED(model_gap_rows_at)
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)
