@@ -37,11 +37,11 @@ static const double D1 = -12715105075.0 / 11282082432, D3 = 87487479700.0 / 3270
 #define SHRINK_MAX 0.2
 /* The stiffness test (HNW IV.2): h |lambda| estimated from the last two stages. On the real axis
  * the pair is stable to 3.3; where a contact's spring and damper hold the step, the estimate
- * scatters from 0.5 to 40 about that bound (measured: a rod sticking at eps = 1e-6), so a step
- * counts as held by stability when its estimate passes 1, and the count is net of the steps that
- * do not. An IWC's contact holds tens of such steps (O(ln 1/eps): 50-150 in all at eps = 1e-6);
- * a contact that holds hundreds is sustained (a rod resting or sliding, a rod on the shaker
- * table): CVODE integrates it, after at most a few hundred explicit steps (~0.1 ms). */
+ * scatters widely about that bound, so a step counts as held by stability when its estimate
+ * passes 1, and the count is net of the steps that do not. An IWC's contact holds O(ln 1/eps)
+ * such steps; a contact that holds hundreds is sustained (a rod resting or sliding, a rod on
+ * the shaker table): CVODE integrates it, after at most a few hundred explicit steps
+ * (docs/fmu.md gives the measurements). */
 #define STABILITY_MARK 1.0
 #define STIFF_STEPS_TO_HAND_OVER 300
 /* Root location to CVODE's resolution (100 units in the last place of the time) within a bound:

@@ -33,11 +33,13 @@ def wheels():
 
 
 def pinned_sundials():
-    """The pinned SUNDIALS tree the plain build was configured with (run.sh's sundials_source)."""
+    """The pinned SUNDIALS tree the plain build was configured with: run.sh's (sundials_source), or the
+    one CMake downloaded into the build tree when given none (cmake/PainleveCvodeSources.cmake)."""
     cache = (BUILD / "CMakeCache.txt").read_text()
     found = re.search(r"^PAINLEVE_CVODE_SOURCE_DIR:PATH=(.+)$", cache, re.M)
-    assert found and found.group(1), "build/ was configured without the pinned SUNDIALS (bash run.sh main)"
-    tree = pathlib.Path(found.group(1))
+    downloaded = sorted((BUILD / "sundials-sources").glob("sundials-sys-*/vendor"))
+    assert (found and found.group(1)) or downloaded, "build/ has no pinned SUNDIALS tree (bash run.sh main)"
+    tree = pathlib.Path(found.group(1)) if found and found.group(1) else downloaded[-1]
     parts = dict(re.findall(r'set\(PACKAGE_VERSION_(MAJOR|MINOR|PATCH) "(\d+)"\)', (tree / "CMakeLists.txt").read_text()))
     return tree, f"{parts['MAJOR']}.{parts['MINOR']}.{parts['PATCH']}"
 
