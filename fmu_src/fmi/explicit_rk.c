@@ -49,12 +49,18 @@ static const double D1 = -12715105075.0 / 11282082432, D3 = 87487479700.0 / 3270
 #define ROOT_TOLERANCE_ULPS 100
 #define MAX_ROOT_ITERATIONS 200
 
+/* The absolute tolerance is this share of rtol x nominal: a state that passes through values
+ * below its nominal (a lift-off's w, of the order eps/2 where w's nominal is eps) would otherwise
+ * be held to its nominal's rtol, not its own, and an outcome such as w at the return would miss
+ * rtol relative by the ratio of the two; with a tenth, the absolute part no longer decides it. */
+#define ABSOLUTE_SHARE 0.1
+
 void erk_start(Erk *e, const Model *m, double t, double rtol)
 {
     double nominal[NX];
     model_get_nominals(m, nominal);
     e->rtol = rtol;
-    for (int i = 0; i < NX; ++i) e->atol[i] = rtol * nominal[i];
+    for (int i = 0; i < NX; ++i) e->atol[i] = ABSOLUTE_SHARE * rtol * nominal[i];
     model_get_states(m, e->y);
     model_indicators_at(m, t, e->y, e->z);
     e->h = 0;
@@ -247,7 +253,17 @@ ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
     return ERK_HAND_OVER;
 }
 
-ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
+/* The model's anchor for the evaluations near x (model.h), or its release. */
+static void anchor(Model *m, const double x[NX], bool anchored)
+{
+#ifdef MODEL_STEP_ANCHOR
+    model_step_anchor(m, x, anchored);
+#else
+    (void)m, (void)x, (void)anchored;
+#endif
+}
+
+static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
     if (step_end_reached(*t, t_end)) {   /* the model's state is the one reached */
         *t = t_end;
@@ -255,6 +271,7 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
     }
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
+        anchor(m, e->y, true);
         if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
         e->h = first_step(e, m, *t, t_end - *t);
         if (!(e->h > 0)) return erk_hand_over(e, m, "a right-hand side is not finite");
@@ -274,6 +291,7 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;
+        anchor(m, e->y, true);
         const double err = try_step(e, m, *t, h, &s);
         if (!isfinite(err)) return erk_hand_over(e, m, "a value is not finite");
         const double factor = fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * pow(fmax(err, 1e-10), -0.2)));
@@ -304,4 +322,11 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
     }
     model_set_states(m, e->y);
     return ERK_REACHED;
+}
+
+ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
+{
+    const ErkResult r = advance(e, m, t, t_end, steps_left);
+    anchor(m, e->y, false);
+    return r;
 }

@@ -124,6 +124,18 @@ void model_flight_at(const ModelFlight *f, double t, double x[MODEL_NX]);
 double model_flight_sample_step(const ModelFlight *f, double t);
 #endif
 
+/* ------------------------------------------ a step's anchor (optional) */
+
+/* A model whose config.h defines MODEL_STEP_ANCHOR may prepare, at the start of each of
+ * the explicit pair's steps, what its evaluations over the step share (the sine and cosine
+ * of an angle that moves little within a step), so that model_derivatives_at and
+ * model_indicators_at at states near x cost less; their values are the same to rounding.
+ * The pair anchors before each step and releases the anchor (anchored false) before it
+ * returns, so that nothing else (Model Exchange, CVODE, the getters) ever sees one. */
+#ifdef MODEL_STEP_ANCHOR
+void model_step_anchor(Model *m, const double x[MODEL_NX], bool anchored);
+#endif
+
 /* ------------------------------------------- step means (Co-Simulation) */
 
 /* The step that began at model_step_begin is done, after `elapsed` (> 0; 0 when
