@@ -253,8 +253,7 @@ ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
     return ERK_HAND_OVER;
 }
 
-/* The model's anchor for the evaluations near x (model.h), or its release. */
-static void anchor(Model *m, const double x[NX], bool anchored)
+void erk_anchor(Model *m, const double x[NX], bool anchored)
 {
 #ifdef MODEL_STEP_ANCHOR
     model_step_anchor(m, x, anchored);
@@ -271,7 +270,7 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
     }
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
-        anchor(m, e->y, true);
+        erk_anchor(m, e->y, true);
         if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
         e->h = first_step(e, m, *t, t_end - *t);
         if (!(e->h > 0)) return erk_hand_over(e, m, "a right-hand side is not finite");
@@ -291,7 +290,7 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;
-        anchor(m, e->y, true);
+        erk_anchor(m, e->y, true);
         const double err = try_step(e, m, *t, h, &s);
         if (!isfinite(err)) return erk_hand_over(e, m, "a value is not finite");
         const double factor = fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * pow(fmax(err, 1e-10), -0.2)));
@@ -327,6 +326,6 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
     const ErkResult r = advance(e, m, t, t_end, steps_left);
-    anchor(m, e->y, false);
+    erk_anchor(m, e->y, false);
     return r;
 }

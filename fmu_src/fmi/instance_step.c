@@ -187,9 +187,15 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
         }
         bool changed;
         ++((Integrator *)in->solver)->events;
-        if (instance_event_update(in, call, true, &changed) != STATUS_OK) return STATUS_ERROR;
+        /* the event's update and the restart evaluate the model many times at nearly one state */
+        double x[MODEL_NX];
+        model_get_states(&in->model, x);
+        erk_anchor(&in->model, x, true);
+        const bool updated = instance_event_update(in, call, true, &changed) == STATUS_OK;
         instance_choose_integrator(in);
-        if (restart(in, call) != STATUS_OK) return STATUS_ERROR;
+        const bool restarted = updated && restart(in, call) == STATUS_OK;
+        erk_anchor(&in->model, x, false);
+        if (!restarted) return STATUS_ERROR;
         if (policy == RETURN_AFTER_EVENT) {
             *end = STEP_EVENT;
             return STATUS_OK;
