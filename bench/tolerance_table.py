@@ -56,6 +56,51 @@ def table(fmu_dir, epsilons=EPSILONS, tolerances=TOLERANCES):
     return result
 
 
+def random_iwc_cases(n=20, seed=36):
+    """n random Theorem 1 cases that the theory predicts to be IWCs: theta0 in [0.9, 1.2], delta in
+    [0, 2] (the sweep's ranges) and eps log-uniform in [1e-6, 1e-2], w10 = 0."""
+    import numpy as np
+    from painleve.experiments.case import Case
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(100 * n):       # the IWC region covers most of these ranges: a bound, rarely reached
+        c = Case(theta0=float(rng.uniform(0.9, 1.2)), delta=float(rng.uniform(0.0, 2.0)),
+                 epsilon=float(10 ** rng.uniform(-6, -2)))
+        if an.predict(c).iwc:
+            out.append(c)
+            if len(out) == n:
+                break
+    return out
+
+
+RANDOM_COLUMNS = ("w rel.", "phi rel.", "theta rel.", "v / v0")
+
+
+def random_table(fmu_dir, cases, tolerances=TOLERANCES):
+    """{rtol: {column: largest error over the random IWC cases}}: the whole outcome at the return."""
+    ref = tight_reference(cases)
+    result = {}
+    for tol in tolerances:
+        rows = run_fmu(fmu_dir, cases, tol, repeat=1)
+        result[tol] = {
+            "w rel.": max(abs(r["w"] - q["w"]) / abs(q["w"]) for r, q in zip(rows, ref)),
+            "phi rel.": max(abs(r["phi"] - q["phi"]) / abs(q["phi"]) for r, q in zip(rows, ref)),
+            "theta rel.": max(abs(r["theta"] - q["theta"]) / abs(q["theta"]) for r, q in zip(rows, ref)),
+            "v / v0": max(abs(r["v"] - q["v"]) / c.v0 for r, q, c in zip(rows, ref, cases))}
+    return result
+
+
+def random_markdown(result, n):
+    lines = [f"{n} random IWC cases (random_iwc_cases: theta0 in [0.9, 1.2], delta in [0, 2], eps "
+             "log-uniform in [1e-6, 1e-2], w10 = 0, kept where the theory predicts an IWC), the same "
+             "reference:", "",
+             "| rtol | " + " | ".join(f"{c} / rtol" for c in RANDOM_COLUMNS) + " |",
+             "|---" * (1 + len(RANDOM_COLUMNS)) + "|"]
+    for tol, worst in result.items():
+        lines.append(f"| {tol:.0e} | " + " | ".join(f"{worst[c] / tol:.2f}" for c in RANDOM_COLUMNS) + " |")
+    return lines
+
+
 def markdown(result):
     lines = ["| rtol | " + " | ".join(f"{c} / rtol" for c in COLUMNS) + " |", "|---" * (1 + len(COLUMNS)) + "|"]
     for tol, worst in result.items():
@@ -100,11 +145,14 @@ def tolerance_markdown(fmu=FMU):
     tmp = tempfile.mkdtemp(prefix="tolerance-table-")
     try:
         from fmpy import extract
-        result = table(extract(str(fmu), os.path.join(tmp, "fmu")))
+        fmu_dir = extract(str(fmu), os.path.join(tmp, "fmu"))
+        result = table(fmu_dir)
+        cases = random_iwc_cases()
+        randoms = random_table(fmu_dir, cases)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return ["## A tolerance that delivers what it says", "", __doc__.split("\n\n", 2)[2].replace("\n", " "), ""] + \
-        markdown(result) + ["", *FINDINGS.split("\n")]
+        markdown(result) + [""] + random_markdown(randoms, len(cases)) + ["", *FINDINGS.split("\n")]
 
 
 def main(argv=None):
@@ -118,6 +166,8 @@ def main(argv=None):
             from fmpy import extract
             fmu_dir = extract(str(fmu_dir), os.path.join(tmp, "fmu"))
         print("\n".join(markdown(table(fmu_dir))))
+        cases = random_iwc_cases()
+        print("\n" + "\n".join(random_markdown(random_table(fmu_dir, cases), len(cases))))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return 0
