@@ -4,7 +4,7 @@
 the project), on bench.py's 25 cases (eps = 1e-2 ... 1e-6: four IWC cases and one
 direct lift-off per eps), in one run.
 
-    .venv/bin/python bench/limit_compare.py [--rounds 15] [--eps 1e-4 ...] [--limit PATH]
+    .venv/bin/python bench/limit_compare.py [--rounds 15] [--eps 1e-4 ...] [--limit PATH] [--before OLD.fmu]
 
 limit.c is built with `cc -O3 -march=native` into a temporary directory; if it is not
 there the script says so in one line and exits 0. Per eps:
@@ -19,7 +19,9 @@ there the script says so in one line and exits 0. Per eps:
   median over rounds, the table's the median over the eps's cases (the slowest case's
   in brackets).
 The table: eps | FMU rtol | FMU us | limit.c us | ratio, and the largest relative error
-in w of each side, with the machine's load average before and after.
+in w of each side, with the machine's load average before and after. --before OLD.fmu
+times another build of the FMU the same way in the same rounds (its own loosest rtol), and
+adds its columns.
 """
 import argparse
 import os
@@ -111,9 +113,10 @@ def loosest_rtol(fmu_dir, cases, ref, ladder=LADDER, target=TARGET):
     return None, None
 
 
-def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT):
+def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT, before_dir=None):
     """One row per eps: dict(eps, rtol, fmu_err, limit_err, fmu_us, fmu_us_max, limit_us,
-    limit_us_max, ratio, w_fmu, w_limit, w_ref), and the load averages before and after."""
+    limit_us_max, ratio, w_fmu, w_limit, w_ref; with before_dir, before_rtol, before_err, before_us,
+    before_ratio), and the load averages before and after."""
     load_before = os.getloadavg()
     setup = {}
     for eps in epsilons:
@@ -121,16 +124,20 @@ def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT)
         ref = tight_reference(cases)
         rtol, err = loosest_rtol(fmu_dir, cases, ref)
         setup[eps] = dict(cases=cases, ref=ref, rtol=rtol, fmu_err=err)
-    times = {(side, eps): [[] for _ in setup[eps]["cases"]] for side in ("fmu", "limit") for eps in epsilons}
+        if before_dir is not None:
+            setup[eps]["before_rtol"], setup[eps]["before_err"] = loosest_rtol(before_dir, cases, ref)
+    names = ("fmu", "limit") + (("before",) if before_dir is not None else ())
+    times = {(side, eps): [[] for _ in setup[eps]["cases"]] for side in names for eps in epsilons}
     last = {}
     for r in range(rounds):
         for eps in epsilons:
             s = setup[eps]
-            if s["rtol"] is None:
+            if s["rtol"] is None or (before_dir is not None and s["before_rtol"] is None):
                 continue
-            sides = ("fmu", "limit") if r % 2 == 0 else ("limit", "fmu")
+            sides = names if r % 2 == 0 else names[::-1]
             for side in sides:
                 rows = (run_fmu(fmu_dir, s["cases"], s["rtol"], repeat) if side == "fmu"
+                        else run_fmu(before_dir, s["cases"], s["before_rtol"], repeat) if side == "before"
                         else run_limit(limit_exe, s["cases"], LIMIT_RTOL, repeat))
                 for i, row in enumerate(rows):
                     times[side, eps][i].append(row["seconds"])
@@ -140,12 +147,16 @@ def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT)
         s = setup[eps]
         row = dict(eps=eps, rtol=s["rtol"], fmu_err=s["fmu_err"], w_ref=[q["w"] for q in s["ref"]])
         if s["rtol"] is not None:
-            per_case = {side: [1e6 * statistics.median(t) for t in times[side, eps]] for side in ("fmu", "limit")}
+            per_case = {side: [1e6 * statistics.median(t) for t in times[side, eps]] for side in names}
             row.update(fmu_us=statistics.median(per_case["fmu"]), fmu_us_max=max(per_case["fmu"]),
                        limit_us=statistics.median(per_case["limit"]), limit_us_max=max(per_case["limit"]),
                        limit_err=max_w_error(last["limit", eps], s["ref"]),
                        w_fmu=[q["w"] for q in last["fmu", eps]], w_limit=[q["w"] for q in last["limit", eps]])
             row["ratio"] = row["fmu_us"] / row["limit_us"]
+            if before_dir is not None:
+                row.update(before_rtol=s["before_rtol"], before_err=s["before_err"],
+                           before_us=statistics.median(per_case["before"]))
+                row["before_ratio"] = row["before_us"] / row["limit_us"]
         table.append(row)
     return table, load_before, os.getloadavg()
 
@@ -155,13 +166,19 @@ def markdown(table, load_before, load_after, rounds):
              f"limit.c at rtol {LIMIT_RTOL:g}", "",
              "| eps | FMU rtol | FMU us/case (slowest) | limit.c us/case (slowest) | ratio | FMU max rel. err w "
              "| limit.c max rel. err w |", "|---|---|---|---|---|---|---|"]
+    before = any("before_us" in r for r in table)
+    if before:
+        lines[-2] += " before: rtol | before: us/case | before: ratio |"
+        lines[-1] += "---|---|---|"
     for r in table:
         if r["rtol"] is None:
-            lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | | |")
+            lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | | |" + " | | |" * before)
             continue
         lines.append(f"| {r['eps']:.0e} | {r['rtol']:.2g} | {r['fmu_us']:.1f} ({r['fmu_us_max']:.1f}) | "
                      f"{r['limit_us']:.2f} ({r['limit_us_max']:.2f}) | {r['ratio']:.1f} | {r['fmu_err']:.1e} | "
                      f"{r['limit_err']:.1e} |")
+        if "before_us" in r:
+            lines[-1] += f" {r['before_rtol']:.2g} | {r['before_us']:.1f} | {r['before_ratio']:.1f} |"
     return lines
 
 
@@ -207,6 +224,7 @@ def main(argv=None):
     parser.add_argument("--eps", type=float, nargs="+", default=list(EPSILONS))
     parser.add_argument("--limit", type=pathlib.Path, default=LIMIT_C, help="limit.c's path")
     parser.add_argument("--fmu", type=pathlib.Path, default=FMU)
+    parser.add_argument("--before", type=pathlib.Path, default=None, help="another build, timed the same way")
     args = parser.parse_args(argv)
     if not args.limit.is_file():
         print(f"{args.limit} is not there: no speed limit to compare with (nothing measured)")
@@ -214,11 +232,11 @@ def main(argv=None):
     tmp = tempfile.mkdtemp(prefix="limit-compare-")
     try:
         exe = build_limit(args.limit, tmp)
-        fmu_dir = args.fmu
-        if str(fmu_dir).endswith(".fmu"):
-            from fmpy import extract
-            fmu_dir = extract(str(fmu_dir), os.path.join(tmp, "fmu"))
-        table, before, after = compare(exe, fmu_dir, args.eps, args.rounds)
+        from fmpy import extract
+        dirs = [extract(str(f), os.path.join(tmp, name)) if str(f).endswith(".fmu") else f
+                for name, f in (("fmu", args.fmu), ("before", args.before)) if f is not None]
+        table, before, after = compare(exe, dirs[0], args.eps, args.rounds,
+                                       before_dir=dirs[1] if args.before is not None else None)
         print("\n".join(markdown(table, before, after, args.rounds)))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
