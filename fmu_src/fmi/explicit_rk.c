@@ -93,6 +93,20 @@ static double norm(const Erk *e, const double v[NX], const double y0[NX], const 
     return sqrt(sum / NX);
 }
 
+/* The next step's factor SAFETY err^(-1/5), within SHRINK_MAX and GROW_MAX: err^(-1/5) as
+ * exp(-log(err)/5), which libm computes in a fraction of pow's time (the controller needs the
+ * factor to a few ulps, not pow's correct rounding), and neither where the bounds decide. */
+static double step_factor(double err)
+{
+    static const double GROWS = (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX) *
+                                (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX);         /* (SAFETY/GROW_MAX)^5 */
+    static const double SHRINKS = (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX) *
+                                  (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX);   /* (SAFETY/SHRINK_MAX)^5 */
+    if (!(err > GROWS)) return GROW_MAX;        /* err <= (SAFETY/GROW_MAX)^5, or not a number */
+    if (err >= SHRINKS) return SHRINK_MAX;
+    return fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * exp(-0.2 * log(err))));
+}
+
 /* The first step from the scales of y and f (HNW II.4, "starting step size"), at most `span`;
  * 0 if a right-hand side is not finite. */
 static double first_step(Erk *e, const Model *m, double t, double span)
@@ -253,15 +267,6 @@ ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
     return ERK_HAND_OVER;
 }
 
-void erk_anchor(Model *m, const double x[NX], bool anchored)
-{
-#ifdef MODEL_STEP_ANCHOR
-    model_step_anchor(m, x, anchored);
-#else
-    (void)m, (void)x, (void)anchored;
-#endif
-}
-
 static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
     if (step_end_reached(*t, t_end)) {   /* the model's state is the one reached */
@@ -270,7 +275,7 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
     }
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
-        erk_anchor(m, e->y, true);
+        model_anchor(m, e->y, true);
         if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
         e->h = first_step(e, m, *t, t_end - *t);
         if (!(e->h > 0)) return erk_hand_over(e, m, "a right-hand side is not finite");
@@ -290,10 +295,10 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;
-        erk_anchor(m, e->y, true);
+        model_anchor(m, e->y, true);
         const double err = try_step(e, m, *t, h, &s);
         if (!isfinite(err)) return erk_hand_over(e, m, "a value is not finite");
-        const double factor = fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * pow(fmax(err, 1e-10), -0.2)));
+        const double factor = step_factor(err);
         if (err > 1) {
             e->h = h * factor;
             rejected = true;
@@ -326,6 +331,6 @@ static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
     const ErkResult r = advance(e, m, t, t_end, steps_left);
-    erk_anchor(m, e->y, false);
+    model_anchor(m, e->y, false);
     return r;
 }

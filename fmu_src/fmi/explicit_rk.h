@@ -43,10 +43,6 @@ void erk_start(Erk *e, const Model *m, double t, double rtol);
  * the model's state and *t following. */
 ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left);
 
-/* Anchors the model for evaluations near the state x, or releases the anchor (model.h's
- * model_step_anchor; nothing for a model without one). */
-void erk_anchor(Model *m, const double x[MODEL_NX], bool anchored);
-
 /* True if the n values are all finite (a right-hand side, a state). */
 bool erk_all_finite(const double *v, int n);
 

@@ -87,9 +87,17 @@ static Status restart(Instance *in, const char *call)
 {
     Integrator *s = in->solver;
     char err[512];
-    if (!in->solver_implicit) erk_start(&s->erk, &in->model, in->time, in->tolerance);
-    else if (!start_cvode(in, err, sizeof err)) return instance_fail(in, call, "%s", err);
-    model_begin_integration(&in->model);
+    if (in->solver_implicit) {
+        if (!start_cvode(in, err, sizeof err)) return instance_fail(in, call, "%s", err);
+        model_begin_integration(&in->model);
+    } else {   /* the pair's indicators and the derived values at its start: one anchor (model.h) */
+        double x[MODEL_NX];
+        model_get_states(&in->model, x);
+        model_anchor(&in->model, x, true);
+        erk_start(&s->erk, &in->model, in->time, in->tolerance);
+        model_begin_integration(&in->model);
+        model_anchor(&in->model, x, false);
+    }
     in->solver_live = true;
     return STATUS_OK;
 }
@@ -187,15 +195,9 @@ static Status integrate(Instance *in, const char *call, double t_end, StepPolicy
         }
         bool changed;
         ++((Integrator *)in->solver)->events;
-        /* the event's update and the restart evaluate the model many times at nearly one state */
-        double x[MODEL_NX];
-        model_get_states(&in->model, x);
-        erk_anchor(&in->model, x, true);
-        const bool updated = instance_event_update(in, call, true, &changed) == STATUS_OK;
+        if (instance_event_update(in, call, true, &changed) != STATUS_OK) return STATUS_ERROR;
         instance_choose_integrator(in);
-        const bool restarted = updated && restart(in, call) == STATUS_OK;
-        erk_anchor(&in->model, x, false);
-        if (!restarted) return STATUS_ERROR;
+        if (restart(in, call) != STATUS_OK) return STATUS_ERROR;
         if (policy == RETURN_AFTER_EVENT) {
             *end = STEP_EVENT;
             return STATUS_OK;

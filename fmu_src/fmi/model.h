@@ -127,7 +127,7 @@ double model_flight_sample_step(const ModelFlight *f, double t);
 /* ------------------------------------------ a step's anchor (optional) */
 
 /* A model whose config.h defines MODEL_STEP_ANCHOR may prepare, at the start of each of
- * the explicit pair's steps, what its evaluations over the step share (the sine and cosine
+ * the explicit pair's steps (and of Co-Simulation's event updates), what its evaluations share (the sine and cosine
  * of an angle that moves little within a step), so that model_derivatives_at and
  * model_indicators_at at states near x cost less; their values are the same to rounding.
  * The pair anchors before each step and releases the anchor (anchored false) before it
@@ -135,6 +135,11 @@ double model_flight_sample_step(const ModelFlight *f, double t);
 #ifdef MODEL_STEP_ANCHOR
 void model_step_anchor(Model *m, const double x[MODEL_NX], bool anchored);
 #endif
+
+/* model_step_anchor where the model has one, else nothing (model_common.c): what the FMI
+ * layer calls. Co-Simulation also anchors its event updates and restarts (many evaluations
+ * at nearly one state); Model Exchange never anchors. */
+void model_anchor(Model *m, const double x[MODEL_NX], bool anchored);
 
 /* ------------------------------------------- step means (Co-Simulation) */
 
