@@ -127,8 +127,8 @@ FINDINGS = (
     "of eps/2 moves w by about 1e-14 v0: 1e-7 relative at eps = 1e-6, whatever the tolerance (limit.c, "
     "which finds the return itself, 1e-10). The tenth costs nothing at equal accuracy: the default "
     "tolerance now meets 1e-6 where the build before needed 1e-7 (the speed limit's table). The two-link "
-    "arm's run from t = 1000 now touches a stick's fold and crosses it 100 ulps later, two events where "
-    "there was one (tests/fmu/test_integrator_switches.py's few-ulps test steps over the second).")
+    "arm's run from t = 1000 now has two events 100 ulps apart at its first slip (a stick's fold touched, "
+    "then crossed), which tests/fmu/test_integrator_switches.py's few-ulps test steps over.")
 
 
 def tolerance_markdown(fmu=FMU):
