@@ -126,19 +126,18 @@ double model_flight_sample_step(const ModelFlight *f, double t);
 
 /* ------------------------------------------ a step's anchor (optional) */
 
-/* A model whose config.h defines MODEL_STEP_ANCHOR may prepare, at the start of each of
- * the explicit pair's steps (and of Co-Simulation's event updates), what its evaluations share (the sine and cosine
- * of an angle that moves little within a step), so that model_derivatives_at and
- * model_indicators_at at states near x cost less; their values are the same to rounding.
- * The pair anchors before each step and releases the anchor (anchored false) before it
- * returns, so that nothing else (Model Exchange, CVODE, the getters) ever sees one. */
+/* A model whose config.h defines MODEL_STEP_ANCHOR may prepare, for evaluations at states
+ * near x, what they share (the sine and cosine of an angle that moves little within a step),
+ * so that they cost less; their values are the same to rounding. Co-Simulation anchors the
+ * explicit pair's steps, the pair's restarts and its own event updates, and releases the
+ * anchor (anchored false) before it goes on, so that nothing else (Model Exchange, CVODE,
+ * the getters) ever sees one. */
 #ifdef MODEL_STEP_ANCHOR
 void model_step_anchor(Model *m, const double x[MODEL_NX], bool anchored);
 #endif
 
 /* model_step_anchor where the model has one, else nothing (model_common.c): what the FMI
- * layer calls. Co-Simulation also anchors its event updates and restarts (many evaluations
- * at nearly one state); Model Exchange never anchors. */
+ * layer calls. */
 void model_anchor(Model *m, const double x[MODEL_NX], bool anchored);
 
 /* ------------------------------------------- step means (Co-Simulation) */

@@ -23,7 +23,7 @@
 #define MODEL_CLOSED_FLIGHT
 typedef RodFlight ModelFlight;
 
-/* The explicit pair anchors the rod's sine and cosine once per step (model.h, rod_anchor). */
+/* Co-Simulation anchors the rod's sine and cosine once per step (model.h, rod_anchor). */
 #define MODEL_STEP_ANCHOR
 
 /* Parameter ranges keep every derived quantity finite in double precision:
