@@ -4,7 +4,7 @@
 the project), on bench.py's 25 cases (eps = 1e-2 ... 1e-6: four IWC cases and one
 direct lift-off per eps), in one run.
 
-    .venv/bin/python bench/limit_compare.py [--rounds 15] [--eps 1e-4 ...] [--limit PATH]
+    .venv/bin/python bench/limit_compare.py [--rounds 15] [--eps 1e-4 ...] [--limit PATH] [--before OLD.fmu]
 
 limit.c is built with `cc -O3 -march=native` into a temporary directory; if it is not
 there the script says so in one line and exits 0. Per eps:
@@ -19,7 +19,9 @@ there the script says so in one line and exits 0. Per eps:
   median over rounds, the table's the median over the eps's cases (the slowest case's
   in brackets).
 The table: eps | FMU rtol | FMU us | limit.c us | ratio, and the largest relative error
-in w of each side, with the machine's load average before and after.
+in w of each side, with the machine's load average before and after. --before OLD.fmu
+times another build of the FMU the same way in the same rounds (its own loosest rtol), and
+adds its columns.
 """
 import argparse
 import os
@@ -111,9 +113,10 @@ def loosest_rtol(fmu_dir, cases, ref, ladder=LADDER, target=TARGET):
     return None, None
 
 
-def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT):
+def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT, before_dir=None):
     """One row per eps: dict(eps, rtol, fmu_err, limit_err, fmu_us, fmu_us_max, limit_us,
-    limit_us_max, ratio, w_fmu, w_limit, w_ref), and the load averages before and after."""
+    limit_us_max, ratio, w_fmu, w_limit, w_ref; with before_dir, before_rtol, before_err, before_us,
+    before_ratio), and the load averages before and after."""
     load_before = os.getloadavg()
     setup = {}
     for eps in epsilons:
@@ -121,16 +124,20 @@ def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT)
         ref = tight_reference(cases)
         rtol, err = loosest_rtol(fmu_dir, cases, ref)
         setup[eps] = dict(cases=cases, ref=ref, rtol=rtol, fmu_err=err)
-    times = {(side, eps): [[] for _ in setup[eps]["cases"]] for side in ("fmu", "limit") for eps in epsilons}
+        if before_dir is not None:
+            setup[eps]["before_rtol"], setup[eps]["before_err"] = loosest_rtol(before_dir, cases, ref)
+    names = ("fmu", "limit") + (("before",) if before_dir is not None else ())
+    times = {(side, eps): [[] for _ in setup[eps]["cases"]] for side in names for eps in epsilons}
     last = {}
     for r in range(rounds):
         for eps in epsilons:
             s = setup[eps]
-            if s["rtol"] is None:
+            if s["rtol"] is None or (before_dir is not None and s["before_rtol"] is None):
                 continue
-            sides = ("fmu", "limit") if r % 2 == 0 else ("limit", "fmu")
+            sides = names if r % 2 == 0 else names[::-1]
             for side in sides:
                 rows = (run_fmu(fmu_dir, s["cases"], s["rtol"], repeat) if side == "fmu"
+                        else run_fmu(before_dir, s["cases"], s["before_rtol"], repeat) if side == "before"
                         else run_limit(limit_exe, s["cases"], LIMIT_RTOL, repeat))
                 for i, row in enumerate(rows):
                     times[side, eps][i].append(row["seconds"])
@@ -140,12 +147,16 @@ def compare(limit_exe, fmu_dir, epsilons=EPSILONS, rounds=ROUNDS, repeat=REPEAT)
         s = setup[eps]
         row = dict(eps=eps, rtol=s["rtol"], fmu_err=s["fmu_err"], w_ref=[q["w"] for q in s["ref"]])
         if s["rtol"] is not None:
-            per_case = {side: [1e6 * statistics.median(t) for t in times[side, eps]] for side in ("fmu", "limit")}
+            per_case = {side: [1e6 * statistics.median(t) for t in times[side, eps]] for side in names}
             row.update(fmu_us=statistics.median(per_case["fmu"]), fmu_us_max=max(per_case["fmu"]),
                        limit_us=statistics.median(per_case["limit"]), limit_us_max=max(per_case["limit"]),
                        limit_err=max_w_error(last["limit", eps], s["ref"]),
                        w_fmu=[q["w"] for q in last["fmu", eps]], w_limit=[q["w"] for q in last["limit", eps]])
             row["ratio"] = row["fmu_us"] / row["limit_us"]
+            if before_dir is not None:
+                row.update(before_rtol=s["before_rtol"], before_err=s["before_err"],
+                           before_us=statistics.median(per_case["before"]))
+                row["before_ratio"] = row["before_us"] / row["limit_us"]
         table.append(row)
     return table, load_before, os.getloadavg()
 
@@ -155,34 +166,50 @@ def markdown(table, load_before, load_after, rounds):
              f"limit.c at rtol {LIMIT_RTOL:g}", "",
              "| eps | FMU rtol | FMU us/case (slowest) | limit.c us/case (slowest) | ratio | FMU max rel. err w "
              "| limit.c max rel. err w |", "|---|---|---|---|---|---|---|"]
+    before = any("before_us" in r for r in table)
+    if before:
+        lines[-2] += " before: rtol | before: us/case | before: ratio |"
+        lines[-1] += "---|---|---|"
     for r in table:
         if r["rtol"] is None:
-            lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | | |")
+            lines.append(f"| {r['eps']:.0e} | none of the ladder within {TARGET:g} | | | | | |" + " | | |" * before)
             continue
         lines.append(f"| {r['eps']:.0e} | {r['rtol']:.2g} | {r['fmu_us']:.1f} ({r['fmu_us_max']:.1f}) | "
                      f"{r['limit_us']:.2f} ({r['limit_us_max']:.2f}) | {r['ratio']:.1f} | {r['fmu_err']:.1e} | "
                      f"{r['limit_err']:.1e} |")
+        if "before_us" in r:
+            lines[-1] += f" {r['before_rtol']:.2g} | {r['before_us']:.1f} | {r['before_ratio']:.1f} |"
     return lines
 
 
 FINDINGS = (
-    "The FMU needs rtol 1e-7 at every eps to bring every case within 1e-6 relative: the direct lift-off's w "
-    "at the return is about eps/2, below its nominal eps, where the error control's absolute part "
-    "(rtol x nominal) dominates (see the tolerance's table below). limit.c gets there at rtol 1e-8 with "
-    "DOP853, an 8th-order pair whose error control is scaled to the contact the same way.\n\n"
-    "Where the gap is (2026-11-27, rtol 1e-7, load about 4): per IWC case the FMU evaluates 250-300 "
-    "right-hand sides at eps = 1e-2 and 590-630 at eps = 1e-6 (the pair's 41-104 step tries, 8-10 % of them "
-    "rejected, a quarter to three quarters of those the first try after a start), limit.c 170-190 and "
-    "340-370 (13-28 steps): 1.6-1.9 times the evaluations, each about 4 times as dear (90 ns against 23 ns). perf over "
-    "2,000 runs of the cases at eps = 1e-2, 1e-4, 1e-6: sincos 27 %, rod_evaluate 19 %, "
-    "contact_derivatives 18 %, erk_advance (the pair's arithmetic) 15 %, contact_event_indicators 5 %, "
-    "pow (the step control) 3 %, contact_indicator_noise 2 %. What would close it, none of it made here: "
-    "the pair's absolute share (the tolerance's section: ratio 4.8-5.9, the lead's decision on the "
-    "contract); an 8th-order pair (limit.c's 27 steps of 12 evaluations where the 5th-order pair takes "
-    "about 100 of 6 at eps = 1e-6); sine and cosine once per step and the indicators after a step sharing "
-    "the step's last evaluation at the same state, both of which need the model interface to change (the "
-    "body's evaluation and model_derivatives_at/model_indicators_at are stateless and const) and so are "
-    "the lead's to decide.")
+    "The FMU meets 1e-6 relative at every eps at its default rtol, 1e-6: the pair's absolute tolerance is a "
+    "tenth of rtol x nominal (explicit_rk.c), so the direct lift-off's w at the return (about eps/2, below "
+    "its nominal eps) is held to about rtol of itself (the tolerance's table below); the build before "
+    "needed rtol 1e-7 for it. limit.c gets there at rtol 1e-8 with DOP853, an 8th-order pair whose error "
+    "control is scaled to the contact the same way.\n\n"
+    "What closed the gap: (1) that tolerance, a decade looser at equal accuracy (31-69 step tries a case where rtol "
+    "1e-7 took 41-104); "
+    "(2) sine and cosine once per step: a model may take an anchor (model.h, MODEL_STEP_ANCHOR) at the "
+    "start of each of the pair's steps and over Co-Simulation's event updates and restarts, released before "
+    "anything else sees the model (Model Exchange never anchors); the rod keeps sin and cos of theta there "
+    "and completes every evaluation within 0.05 rad of it by the angle sum with Taylor polynomials "
+    "(truncation below 1.2e-22, so the values are libm's to rounding), and keeps an anchor while theta "
+    "stays within 0.025 rad of it: one libm call per 0.025 rad of turn instead of one per evaluation; "
+    "(3) the rod's body evaluation writes its BodyState field by field (the compound literal cleared its "
+    "184 bytes with rep stos on every call, 12 % of that function).\n\n"
+    "Where the rest is (2026-11-27, rtol 1e-6): per IWC case the FMU takes 31-37 steps of 6 evaluations at "
+    "eps = 1e-2 (192-228 evaluations) and 65-69 at eps = 1e-6 (396-420), limit.c 13-14 steps (169-193) and "
+    "27-28 (337-373): 1.15-1.25 times the evaluations, each about three times as dear (the general contact "
+    "core behind the model interface against straight-line code). perf over the cases at eps = 1e-2, "
+    "1e-4, 1e-6: the right-hand side (rod_evaluate, contact_derivatives) about 50 %, the pair's own "
+    "arithmetic 14 %, the event updates 19 % (contact_move_off_surfaces evaluates the indicators many "
+    "times at each of the 3-4 events a case), initialization 9 % (its own initial event update), the "
+    "closed-form flight 5 %, exp and log of the step control 4 %, sin and cos 2 % (the flight's). What "
+    "would go further: an 8th-order "
+    "pair (limit.c's 20 steps of 12 evaluations where the 5th-order pair takes about 50 of 6 at "
+    "eps = 1e-4); fewer evaluations in the contact core's event update; the indicators after a step "
+    "sharing the step's last evaluation at the same state.")
 
 
 def limit_markdown(epsilons=EPSILONS, rounds=ROUNDS, fmu=FMU):
@@ -207,6 +234,7 @@ def main(argv=None):
     parser.add_argument("--eps", type=float, nargs="+", default=list(EPSILONS))
     parser.add_argument("--limit", type=pathlib.Path, default=LIMIT_C, help="limit.c's path")
     parser.add_argument("--fmu", type=pathlib.Path, default=FMU)
+    parser.add_argument("--before", type=pathlib.Path, default=None, help="another build, timed the same way")
     args = parser.parse_args(argv)
     if not args.limit.is_file():
         print(f"{args.limit} is not there: no speed limit to compare with (nothing measured)")
@@ -214,11 +242,11 @@ def main(argv=None):
     tmp = tempfile.mkdtemp(prefix="limit-compare-")
     try:
         exe = build_limit(args.limit, tmp)
-        fmu_dir = args.fmu
-        if str(fmu_dir).endswith(".fmu"):
-            from fmpy import extract
-            fmu_dir = extract(str(fmu_dir), os.path.join(tmp, "fmu"))
-        table, before, after = compare(exe, fmu_dir, args.eps, args.rounds)
+        from fmpy import extract
+        dirs = [extract(str(f), os.path.join(tmp, name)) if str(f).endswith(".fmu") else f
+                for name, f in (("fmu", args.fmu), ("before", args.before)) if f is not None]
+        table, before, after = compare(exe, dirs[0], args.eps, args.rounds,
+                                       before_dir=dirs[1] if args.before is not None else None)
         print("\n".join(markdown(table, before, after, args.rounds)))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -49,12 +49,18 @@ static const double D1 = -12715105075.0 / 11282082432, D3 = 87487479700.0 / 3270
 #define ROOT_TOLERANCE_ULPS 100
 #define MAX_ROOT_ITERATIONS 200
 
+/* The absolute tolerance is this share of rtol x nominal: a state that passes through values
+ * below its nominal (a lift-off's w, of the order eps/2 where w's nominal is eps) would otherwise
+ * be held to its nominal's rtol, not its own, and an outcome such as w at the return would miss
+ * rtol relative by the ratio of the two; with a tenth, the absolute part no longer decides it. */
+#define ABSOLUTE_SHARE 0.1
+
 void erk_start(Erk *e, const Model *m, double t, double rtol)
 {
     double nominal[NX];
     model_get_nominals(m, nominal);
     e->rtol = rtol;
-    for (int i = 0; i < NX; ++i) e->atol[i] = rtol * nominal[i];
+    for (int i = 0; i < NX; ++i) e->atol[i] = ABSOLUTE_SHARE * rtol * nominal[i];
     model_get_states(m, e->y);
     model_indicators_at(m, t, e->y, e->z);
     e->h = 0;
@@ -89,7 +95,8 @@ static double norm(const Erk *e, const double v[NX], const double y0[NX], const 
 
 #ifdef MODEL_GAP_ROWS
 /* norm() with the model's gap and normal rate (rows r at y0) as two more components, weighted
- * as a state is: rtol nominal + rtol max of their values at y0 and, linearized, at y1. */
+ * as a state is: ABSOLUTE_SHARE rtol nominal + rtol max of their values at y0 and, linearized,
+ * at y1. */
 static double norm_with_rows(const Erk *e, const double v[NX], const double y0[NX], const double y1[NX],
                              const ModelGapRows *r)
 {
@@ -101,7 +108,8 @@ static double norm_with_rows(const Erk *e, const double v[NX], const double y0[N
             dv += r->row[k][i] * v[i];
             dy += r->row[k][i] * (y1[i] - y0[i]);
         }
-        const double s = e->rtol * (r->nominal[k] + fmax(fabs(r->value[k]), fabs(r->value[k] + dy)));
+        const double size = fmax(fabs(r->value[k]), fabs(r->value[k] + dy));
+        const double s = e->rtol * (ABSOLUTE_SHARE * r->nominal[k] + size);
         sum += (dv / s) * (dv / s);
     }
     return sqrt(sum / (NX + 2));
@@ -120,6 +128,20 @@ static double step_error(const Erk *e, const Model *m, double t, const double er
     (void)m, (void)t;
     return norm(e, err, y0, y1);
 #endif
+}
+
+/* The next step's factor SAFETY err^(-1/5), within SHRINK_MAX and GROW_MAX: err^(-1/5) as
+ * exp(-log(err)/5), which libm computes in a fraction of pow's time (the controller needs the
+ * factor to a few ulps, not pow's correct rounding), and neither where the bounds decide. */
+static double step_factor(double err)
+{
+    static const double GROWS = (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX) *
+                                (SAFETY / GROW_MAX) * (SAFETY / GROW_MAX);         /* (SAFETY/GROW_MAX)^5 */
+    static const double SHRINKS = (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX) *
+                                  (SAFETY / SHRINK_MAX) * (SAFETY / SHRINK_MAX);   /* (SAFETY/SHRINK_MAX)^5 */
+    if (!(err > GROWS)) return GROW_MAX;        /* err <= (SAFETY/GROW_MAX)^5, or not a number */
+    if (err >= SHRINKS) return SHRINK_MAX;
+    return fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * exp(-0.2 * log(err))));
 }
 
 /* The first step from the scales of y and f (HNW II.4, "starting step size"), at most `span`;
@@ -282,7 +304,7 @@ ErkResult erk_hand_over(Erk *e, Model *m, const char *why)
     return ERK_HAND_OVER;
 }
 
-ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
+static ErkResult advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
 {
     if (step_end_reached(*t, t_end)) {   /* the model's state is the one reached */
         *t = t_end;
@@ -290,6 +312,7 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
     }
     if (e->h == 0) {   /* a start: the state is the model's */
         model_get_states(m, e->y);   /* e->z is the indicators there (erk_start, a flight) */
+        model_anchor(m, e->y, true);
         if (!rhs(e, m, *t, e->y, e->f)) return erk_hand_over(e, m, "a right-hand side is not finite");
         e->h = first_step(e, m, *t, t_end - *t);
         if (!(e->h > 0)) return erk_hand_over(e, m, "a right-hand side is not finite");
@@ -309,9 +332,10 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
         const double h = last ? t_end - *t : e->h;
         --*steps_left;
         ++e->steps;
+        model_anchor(m, e->y, true);
         const double err = try_step(e, m, *t, h, &s);
         if (!isfinite(err)) return erk_hand_over(e, m, "a value is not finite");
-        const double factor = fmin(GROW_MAX, fmax(SHRINK_MAX, SAFETY * pow(fmax(err, 1e-10), -0.2)));
+        const double factor = step_factor(err);
         if (err > 1) {
             e->h = h * factor;
             rejected = true;
@@ -339,4 +363,11 @@ ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_lef
     }
     model_set_states(m, e->y);
     return ERK_REACHED;
+}
+
+ErkResult erk_advance(Erk *e, Model *m, double *t, double t_end, long *steps_left)
+{
+    const ErkResult r = advance(e, m, t, t_end, steps_left);
+    model_anchor(m, e->y, false);
+    return r;
 }

@@ -35,7 +35,7 @@ typedef struct {
 } Erk;
 
 /* (Re)starts at time t from the model's state, with tolerances rtol and
- * rtol * nominal (CVODE's meaning: cosim_start). */
+ * 0.1 rtol * nominal (a tenth of CVODE's absolute part: explicit_rk.c says why). */
 void erk_start(Erk *e, const Model *m, double t, double rtol);
 
 /* Integrates from *t towards t_end as cosim_advance does (stopping exactly at

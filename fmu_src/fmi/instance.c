@@ -150,7 +150,17 @@ Status instance_event_update(Instance *in, const char *call, bool located, bool 
 {
     ModelEvent e = { .describe = in->log_on[LOG_EVENTS] || in->log_on[LOG_ALL], .located = located };
     model_set_time(&in->model, in->time);
-    if (!model_event_update(&in->model, in->time, &e)) return instance_fail(in, call, "%s", e.text);
+    /* Co-Simulation's update evaluates the model many times at nearly one state: anchored there
+     * (model.h); Model Exchange's is not, its values libm's as the importer's own calls see them */
+    const bool anchored = in->interface == CO_SIMULATION;
+    double x[MODEL_NX];
+    if (anchored) {
+        model_get_states(&in->model, x);
+        model_anchor(&in->model, x, true);
+    }
+    const bool updated = model_event_update(&in->model, in->time, &e);
+    if (anchored) model_anchor(&in->model, x, false);
+    if (!updated) return instance_fail(in, call, "%s", e.text);
     if (e.switched || e.states_changed) instance_log_event(in, "%s", e.text);
     *states_changed = e.switched || e.states_changed;
     in->fast_growth = e.fast_growth;

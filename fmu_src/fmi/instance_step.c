@@ -89,9 +89,17 @@ static Status restart(Instance *in, const char *call)
 {
     Integrator *s = in->solver;
     char err[512];
-    if (!in->solver_implicit) erk_start(&s->erk, &in->model, in->time, in->tolerance);
-    else if (!start_cvode(in, err, sizeof err)) return instance_fail(in, call, "%s", err);
-    model_begin_integration(&in->model);
+    if (in->solver_implicit) {
+        if (!start_cvode(in, err, sizeof err)) return instance_fail(in, call, "%s", err);
+        model_begin_integration(&in->model);
+    } else {   /* the pair's indicators and the derived values at its start: one anchor (model.h) */
+        double x[MODEL_NX];
+        model_get_states(&in->model, x);
+        model_anchor(&in->model, x, true);
+        erk_start(&s->erk, &in->model, in->time, in->tolerance);
+        model_begin_integration(&in->model);
+        model_anchor(&in->model, x, false);
+    }
     in->solver_live = true;
     return STATUS_OK;
 }

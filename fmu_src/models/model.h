@@ -22,6 +22,8 @@
  *   MODEL_CLOSED_FLIGHT  provides the model_flight_* functions (below); default: none;
  *   MODEL_GAP_ROWS       provides model_gap_rows_at (below: a contact's gap that is no
  *                        state); default: the states' own error control alone;
+ *   MODEL_STEP_ANCHOR    provides model_step_anchor (below: what evaluations near a
+ *                        state share); default: none;
  *   MODEL_NO_PARTIALS    (a message) has no partial derivatives, and provides no
  *                        model_calculated_partial.
  * Every other function below a model provides, except those model_common.c defines. */
@@ -166,6 +168,22 @@ typedef struct {
 
 void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], ModelGapRows *r);
 #endif
+
+/* ------------------------------------------ a step's anchor (optional) */
+
+/* A model whose config.h defines MODEL_STEP_ANCHOR may prepare, for evaluations at states
+ * near x, what they share (the sine and cosine of an angle that moves little within a step),
+ * so that they cost less; their values are the same to rounding. Co-Simulation anchors the
+ * explicit pair's steps, the pair's restarts and its own event updates, and releases the
+ * anchor (anchored false) before it goes on, so that nothing else (Model Exchange, CVODE,
+ * the getters) ever sees one. */
+#ifdef MODEL_STEP_ANCHOR
+void model_step_anchor(Model *m, const double x[MODEL_NX], bool anchored);
+#endif
+
+/* model_step_anchor where the model has one, else nothing (model_common.c): what the FMI
+ * layer calls. */
+void model_anchor(Model *m, const double x[MODEL_NX], bool anchored);
 
 /* ------------------------------------------- step means (Co-Simulation) */
 

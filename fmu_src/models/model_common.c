@@ -23,6 +23,15 @@ typedef char model_without_events_has_no_indicators[(MODEL_NZ) == 0 ? 1 : -1];
 static const VariableInfo VARIABLES[VR_COUNT] = { MODEL_VARIABLES(MODEL_INFO) };
 #undef MODEL_INFO
 
+void model_anchor(Model *m, const double x[MODEL_NX], bool anchored)
+{
+#ifdef MODEL_STEP_ANCHOR
+    model_step_anchor(m, x, anchored);
+#else
+    (void)m, (void)x, (void)anchored;
+#endif
+}
+
 const VariableInfo *model_variable(unsigned int vr)
 {
     return vr < VR_COUNT ? &VARIABLES[vr] : NULL;

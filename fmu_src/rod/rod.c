@@ -45,24 +45,63 @@ RodCoeffs rod_coeffs(const RodParams *p, double theta, double phi)
     return r;
 }
 
+/* The reach of the anchored sine and cosine: within it the polynomials below leave a relative
+ * truncation error under 1.2e-22 (the first omitted terms, d^11/11! and d^12/12!), so the
+ * results are libm's to rounding; the explicit pair's steps turn theta by far less. */
+#define ANCHOR_REACH 0.05
+
+void rod_anchor(RodParams *p, double theta, bool anchored)
+{
+    /* an anchor within half the reach serves a step from theta too: it is kept */
+    if (anchored && p->anchored && fabs(theta - p->anchor_theta) < 0.5 * ANCHOR_REACH) return;
+    p->anchored = anchored;
+    if (!anchored) return;
+    p->anchor_theta = theta;
+    p->anchor_sin = sin(theta);
+    p->anchor_cos = cos(theta);
+}
+
+/* sin and cos of th: near the anchor by the angle sum with Taylor polynomials of the small
+ * difference (a step's six evaluations then cost one libm call between them), else libm's. */
+static void rod_sincos(const RodParams *p, double th, double *sn, double *cs)
+{
+    const double d = th - p->anchor_theta;
+    if (!p->anchored || !(fabs(d) < ANCHOR_REACH)) {
+        *sn = sin(th);
+        *cs = cos(th);
+        return;
+    }
+    const double d2 = d * d;
+    const double sd = d + d * d2 * (-1.0 / 6 + d2 * (1.0 / 120 + d2 * (-1.0 / 5040 + d2 * (1.0 / 362880))));
+    const double cd_minus_1 =
+        d2 * (-0.5 + d2 * (1.0 / 24 + d2 * (-1.0 / 720 + d2 * (1.0 / 40320 + d2 * (-1.0 / 3628800)))));
+    *sn = p->anchor_sin + (p->anchor_sin * cd_minus_1 + p->anchor_cos * sd);
+    *cs = p->anchor_cos + (p->anchor_cos * cd_minus_1 - p->anchor_sin * sd);
+}
+
 /* The rod body: the contact end and its accelerations without contact force (eq coeffs'
  * a, b; phi' = alpha tau), the responses above, the energy in units of m g l (centre of
  * mass (x - cos theta, y + sin theta), eq coord). v and w are states: exact. */
 static void rod_evaluate(const void *params, const double x[], BodyState *s)
 {
     const RodParams *p = params;
-    const double th = x[ROD_THETA], phi = x[ROD_PHI], sn = sin(th), cs = cos(th), al = p->alpha;
+    const double th = x[ROD_THETA], phi = x[ROD_PHI], al = p->alpha;
+    double sn, cs;
+    rod_sincos(p, th, &sn, &cs);
     /* a and b from this sin and cos: the right-hand side's hot path needs none of rod_coeffs'
      * other coefficients, nor sin and cos twice */
     const double a = coeff_a(p, sn, cs, phi), b = coeff_b(p, sn, cs, phi);
     const double G_TT = 1 + al * sn * sn, G_TN = al * sn * cs, G_NN = 1 + al * cs * cs;
-    *s = (BodyState){ .x = x[ROD_X], .y = x[ROD_Y], .v = x[ROD_V], .w = x[ROD_W],
-                      .free = { a, b, al * p->tau },
-                      .normal = { G_TN, G_NN, -al * cs },
-                      .friction = { G_TT, G_TN, -al * sn },
-                      .a = a, .b = b,
-                      .a_scale = phi * phi * fabs(cs) + fabs(p->f_x) + al * fabs(sn * p->tau),
-                      .G_TT = G_TT, .G_TN = G_TN, .G_NN = G_NN };
+    /* every field written one by one (a compound literal would clear the whole struct first, a
+     * measurable part of the right-hand side's cost) */
+    s->x = x[ROD_X], s->y = x[ROD_Y], s->v = x[ROD_V], s->w = x[ROD_W];
+    s->y_noise = s->w_noise = s->v_noise = 0;
+    s->free[0] = a, s->free[1] = b, s->free[2] = al * p->tau;
+    s->normal[0] = G_TN, s->normal[1] = G_NN, s->normal[2] = -al * cs;
+    s->friction[0] = G_TT, s->friction[1] = G_TN, s->friction[2] = -al * sn;
+    s->a = a, s->b = b;
+    s->a_scale = phi * phi * fabs(cs) + fabs(p->f_x) + al * fabs(sn * p->tau);
+    s->G_TT = G_TT, s->G_TN = G_TN, s->G_NN = G_NN;
     const double Xd = x[ROD_V] + phi * sn, Yd = x[ROD_W] + phi * cs;
     s->energy = 0.5 * (Xd * Xd + Yd * Yd) + 0.5 * phi * phi / al + (x[ROD_Y] + sn);
 }

@@ -53,7 +53,16 @@ typedef struct {
      * centre of mass and a torque tau in theta's sense. They enter the paper's a and b
      * (a += f_x - alpha sin tau, b += f_y - alpha cos tau) and phi' (+= alpha tau). */
     double f_x, f_y, tau;
+    /* Not a parameter: sin and cos of theta at the start of the explicit pair's step
+     * (rod_anchor), which the body's evaluations near it complete by the angle sum; unset
+     * (anchored false) everywhere else, where they are libm's. */
+    bool anchored;
+    double anchor_theta, anchor_sin, anchor_cos;
 } RodParams;
+
+/* Anchors sin and cos at theta (rod_evaluate's evaluations within 0.05 of it use them), or
+ * releases the anchor (anchored false). */
+void rod_anchor(RodParams *p, double theta, bool anchored);
 
 /* The contact core on the rod with parameters p (p must outlive it). */
 Contact rod_contact(const RodParams *p);

@@ -89,7 +89,8 @@ static const char *const COL[NK] = { "x", "v", "y", "w", "theta", "phi", "alpha"
 static int check_point(ContactMode m, const char *mode_name, long *entries)
 {
     /* kappa, beta up to 30: at penetrations d = -y/eps ~ 3 eps their terms are O(1) parts of h */
-    RodParams p = { uniform(0.3, 6), uniform(0, 3), uniform(0, 3), uniform(1e-3, 0.3), uniform(0, 30), uniform(0, 30), 0, 0, 0 };
+    RodParams p = { .alpha = uniform(0.3, 6), .mu = uniform(0, 3), .delta = uniform(0, 3), .epsilon = uniform(1e-3, 0.3),
+                    .kappa = uniform(0, 30), .beta = uniform(0, 30) };
     if (uniform(0, 1) < 0.1) p.delta = 0; /* undamped contacts too */
     if (uniform(0, 1) < 0.2) p.kappa = p.beta = 0; /* the paper's linear law too */
     if (uniform(0, 1) < 0.7) {                       /* applied loads (the SI model's inputs) */

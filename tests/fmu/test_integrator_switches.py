@@ -269,6 +269,8 @@ def test_a_restart_then_steps_of_a_few_ulps_stay_with_the_pair(unpacked, fmi):
     # at each of its first events, a state is taken (the integrator restarts there, at the next
     # step's start) and steps of 1 to 60 ulps follow. Each tiny step is the pair's last step, however
     # small: it reaches its end, and hands nothing to CVODE, as the uninterrupted run hands nothing.
+    # An event within the 121 ulps of tiny steps after the one before (a stick's fold touched, then
+    # crossed 100 ulps later) is passed by them: the run restarts there within the tiny steps.
     t0, end = 1000.0, 1000.0 + ARM_EVENTS[3]
     scenario = ("TwoLinkArm.fmu", t0, {}, ARM_EVENTS[3])
     ref, r = reference(unpacked, scenario, fmi)
@@ -276,6 +278,8 @@ def test_a_restart_then_steps_of_a_few_ulps_stay_with_the_pair(unpacked, fmi):
     events = switch_times(r, t0)[:4]
     s = slave(unpacked, scenario, fmi)
     for T in events:
+        if T <= s.t:
+            continue
         s.step_to(T)
         s.free_fmu_state(s.get_fmu_state())
         for k in (1, 5, 9, 16, 30, 60):

@@ -69,8 +69,9 @@ def test_theorem1_phases_compress_stick_lift_off_fly_back(fmu_path, fmi_type, de
     assert o.compression > 0 and o.stick > 0 and o.lift_off > 0
     # the rod starts in contact (touch-down at t = 0), so the phases fill the run
     assert o.compression + o.stick + o.lift_off + o.flight_back == pytest.approx(o.t_return, rel=1e-12)
-    if delta == 0:      # F_N = 0 is y = 0: contact ends at the return itself
-        assert o.flight_back == 0
+    if delta == 0:      # F_N = 0 is y = 0: contact ends at the return itself, to the rounding of
+        # the two times (the record's located root, the flight's closed form run back to y = 0)
+        assert 0 <= o.flight_back <= 4 * math.ulp(o.t_return)
     else:               # damping ends the force while the end is still below the floor, moving up
         assert o.flight_back > 0
     # each phase is O(eps ln 1/eps) or shorter

@@ -29,6 +29,9 @@
 #define MODEL_CLOSED_FLIGHT
 typedef RodFlight ModelFlight;
 
+/* Co-Simulation anchors the rod's sine and cosine once per step (model.h, rod_anchor). */
+#define MODEL_STEP_ANCHOR
+
 /* Parameter ranges keep every derived quantity finite in double precision:
  * F_N ~ y/eps^2 (kappa y^2/eps^3) and phi^2 must not overflow. kappa, beta >= 0
  * keep the compliance law h decreasing in y and w where the contact acts (rod.h). */

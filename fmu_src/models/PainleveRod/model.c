@@ -119,6 +119,11 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
     return ok;
 }
 
+void model_step_anchor(Model *m, const double x[MODEL_NX], bool anchored)
+{
+    rod_anchor(&m->params, x[ROD_THETA], anchored);
+}
+
 /* ------------------------------------- closed-form flight (model.h) */
 
 /* In flight the rod's centre of mass falls at (f_x, f_y - 1) (weight 1 in units of m g, l = 1)
