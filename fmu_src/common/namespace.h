@@ -35,7 +35,6 @@
 #define contact_indicator_name NAMESPACED(contact_indicator_name)
 #define contact_indicator_noise NAMESPACED(contact_indicator_noise)
 #define contact_initial_mode NAMESPACED(contact_initial_mode)
-#define contact_start_on_floor NAMESPACED(contact_start_on_floor)
 #define contact_jacobian_differences NAMESPACED(contact_jacobian_differences)
 #define contact_move_off_surfaces NAMESPACED(contact_move_off_surfaces)
 #define contact_normal_force NAMESPACED(contact_normal_force)
@@ -49,6 +48,7 @@
 #define contact_time_scale NAMESPACED(contact_time_scale)
 
 /* rod.c, rod_partials.c: the rod, the core's first body */
+#define rod_anchor NAMESPACED(rod_anchor)
 #define rod_coefficient_outputs NAMESPACED(rod_coefficient_outputs)
 #define rod_coeffs NAMESPACED(rod_coeffs)
 #define rod_contact NAMESPACED(rod_contact)
@@ -83,6 +83,8 @@
 #define model_flight_begin NAMESPACED(model_flight_begin)
 #define model_flight_sample_step NAMESPACED(model_flight_sample_step)
 #define model_gap_rows_at NAMESPACED(model_gap_rows_at)
+#define model_step_anchor NAMESPACED(model_step_anchor)
+#define model_anchor NAMESPACED(model_anchor)
 #define model_get_nominals NAMESPACED(model_get_nominals)
 #define model_get_states NAMESPACED(model_get_states)
 #define model_implausible NAMESPACED(model_implausible)

@@ -25,12 +25,6 @@ static ContactSurfaces start_surfaces(const BodyState *s)
     return (ContactSurfaces){ .gap = at_rest, .still = at_rest };
 }
 
-bool contact_start_on_floor(const Contact *c, const double x[])
-{
-    const BodyState s = contact_body(c, x);
-    return start_surfaces(&s).gap;
-}
-
 ContactMode contact_initial_mode(const Contact *c, double x[])
 {
     /* Slip follows the sign of v until the rules decide. */

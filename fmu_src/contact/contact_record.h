@@ -91,10 +91,6 @@ ContactRecord contact_record_new(void);
 /* The mode decided from the state alone (nothing is remembered before the start). */
 ContactMode contact_initial_mode(const Contact *c, double x[]);
 
-/* Whether the start at x is on the floor at rest: y and w are 0 within the rounding the body
- * reports (a body whose gap is no state reads a tip placed on the floor so). */
-bool contact_start_on_floor(const Contact *c, const double x[]);
-
 /* Initialization ends at `time`: the initial mode, an empty record. */
 void contact_record_start(ContactRecord *r, const Contact *c, double x[], double time);
 

@@ -79,8 +79,9 @@ def test_the_fmus_iwc_converges_to_e_and_matches_the_numpy_arm(body):
 def test_the_arm_through_co_simulation_does_what_the_numpy_arm_and_model_exchange_do(arm_fmu, body, eps):
     """The FMU's own integrator, the return bisected on its steps: w/v0 at the return is the independent
     numpy arm's, as Model Exchange's is, the return's time the event-driven reference arm's, and the two
-    interfaces see the same phases. (Model Exchange's time is held to the importer's control of the
-    angles, rtol |theta|, not of the gap: a looser bound.)"""
+    interfaces see the same phases. The return's time within 1e-5: the start on the floor at rest is a
+    grazing one, whose times move by the square root of the rounding the angles put in the tip's height
+    (1e-15 m against eps^2 = 1e-10 here: docs/general_body.md §1)."""
     start = body.floor_start(body.compliance(dict(PARAMS, theta1=THETA1), eps, 1.0), V0, guess=dict(theta2=THETA2))
     me = body.iwc(start, relative_tolerance=1e-10)
     with Body(arm_fmu, fmi_type="CoSimulation") as cs_body:
@@ -92,7 +93,7 @@ def test_the_arm_through_co_simulation_does_what_the_numpy_arm_and_model_exchang
     reference = AF.simulate({k: start[k] for k in ("m1", "m2", "l1", "l2", "J1", "J2", "g", "mu", "H", "k", "c")},
                             np.array([start["theta1"], start["theta2"]]), np.array([start["omega1"], start["omega2"]]))
     assert cs.w == pytest.approx(me.w, rel=1e-6) and cs.w == pytest.approx(reference.w, rel=1e-6)
-    assert cs.t_return == pytest.approx(reference.t, rel=1e-6) and me.t_return == pytest.approx(reference.t, rel=1e-5)
+    assert cs.t_return == pytest.approx(reference.t, rel=1e-5) and me.t_return == pytest.approx(reference.t, rel=1e-5)
     for phase in ("compression", "stick", "lift_off", "flight_back"):
         assert getattr(cs, phase) == pytest.approx(getattr(me, phase), abs=1e-5 * me.t_return)
 

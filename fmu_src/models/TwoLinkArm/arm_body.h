@@ -16,9 +16,9 @@
 enum { ARM_THETA1, ARM_THETA2, ARM_OMEGA1, ARM_OMEGA2, ARM_NX };
 
 /* The gap is measured from a reference configuration: y = y_ref + l1 (sin theta1 - sin ref1)
- * + l2 (sin theta2 - sin ref2), the differences in a form exact near the reference. Taken at the
- * start, it keeps a tip placed on the floor at y = 0 exactly, where the angles' own rounding
- * (an ulp of theta times l) would perturb a grazing start by the square root of it. */
+ * + l2 (sin theta2 - sin ref2), the differences in a form exact near the reference (the model
+ * measures from angles 0, y_ref = H; docs/general_body.md §1 says what a reference at the start
+ * would give a tip placed on the floor). */
 typedef struct {
     double m1, l1, J1, m2, l2, J2, H; /* scaled: m1 + m2 = 1, l1 + l2 = 1 */
     double ref1, ref2;                /* the reference angles */

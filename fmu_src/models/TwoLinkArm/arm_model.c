@@ -24,14 +24,7 @@ static void scaled(const Model *m, ArmBody *b, ContactLaw *law)
     const double M = m->m1 + m->m2, L = m->l1 + m->l2, ML2 = M * L * L;
     *b = (ArmBody){ .m1 = m->m1 / M, .l1 = m->l1 / L, .J1 = m->J1 / ML2,
                     .m2 = m->m2 / M, .l2 = m->l2 / L, .J2 = m->J2 / ML2, .H = m->H / L };
-    if (m->referenced) {
-        b->ref1 = m->reference[0];
-        b->ref2 = m->reference[1];
-        b->y_ref = m->reference[2];
-        b->y_ref_noise = m->reference[3];
-    } else {
-        arm_set_reference(b, 0, 0, false);
-    }
+    arm_set_reference(b, 0, 0, false);   /* the gap from angles 0: y_ref = H */
     *law = (ContactLaw){ .mu = m->mu, .delta = m->c / sqrt(M * m->k), .epsilon = sqrt(M * m->g / (m->k * L)),
                          .kappa = m->kappa, .beta = m->beta };
 }
@@ -207,22 +200,8 @@ static void unscale_changes(Model *m, const double xs[ARM_NX])
         if (xs[j] != m->xs[j]) m->x[j] = j >= ARM_OMEGA1 ? xs[j] / T : xs[j];
 }
 
-/* The gap's reference at the start's angles: y = 0 exactly if the start is on the floor at rest. */
-static void take_reference(Model *m)
-{
-    model_update(m);
-    const Contact c = contact_of(&m->body, &m->law);
-    const bool on_floor = contact_start_on_floor(&c, m->xs);
-    arm_set_reference(&m->body, m->xs[ARM_THETA1], m->xs[ARM_THETA2], on_floor);
-    const double reference[4] = { m->body.ref1, m->body.ref2, m->body.y_ref, m->body.y_ref_noise };
-    memcpy(m->reference, reference, sizeof reference);
-    m->referenced = true;
-    model_touch(m);
-}
-
 void model_start(Model *m, double time, char *text, size_t size)
 {
-    take_reference(m);
     model_update(m);
     const Contact c = contact_of(&m->body, &m->law);
     double xs[ARM_NX];
@@ -255,9 +234,5 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 
 const char *model_internals_implausible(const Model *m)
 {
-    for (int i = 0; i < 2; ++i)
-        if (!(fabs(m->reference[i]) <= ARM_STATE_BOUND)) return i ? "theta2_ref" : "theta1_ref";
-    if (!(fabs(m->reference[2]) <= 1e6)) return "y_ref";
-    if (!(m->reference[3] >= 0 && m->reference[3] <= 1e-6)) return "y_ref_noise";
     return contact_record_implausible(&m->run);
 }

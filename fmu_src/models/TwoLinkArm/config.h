@@ -65,14 +65,7 @@
     CONTACT_RECORD_TIMES(VARIABLE)                                                                 \
     CONTACT_RECORD_MODES(VARIABLE)
 
-/* The gap's reference (arm_body.h), taken when initialization ends: an FMU state carries it. */
-#define MODEL_INTERNALS(INTERNAL)                  \
-    CONTACT_RECORD_INTERNALS(INTERNAL)             \
-    INTERNAL("referenced", referenced, BOOLEAN)    \
-    INTERNAL("theta1_ref", reference[0], REAL)     \
-    INTERNAL("theta2_ref", reference[1], REAL)     \
-    INTERNAL("y_ref", reference[2], REAL)          \
-    INTERNAL("y_ref_noise", reference[3], REAL)
+#define MODEL_INTERNALS(INTERNAL) CONTACT_RECORD_INTERNALS(INTERNAL)
 
 /* Outputs: the tip (SI), the contact forces and the energy (SI), the coefficients (scaled). */
 enum { ARM_OUT_X, ARM_OUT_Y, ARM_OUT_V, ARM_OUT_W, ARM_OUT_F_N, ARM_OUT_F_T, ARM_OUT_ENERGY, ARM_OUT_A,
@@ -84,8 +77,6 @@ typedef struct {
     double m1, l1, J1, m2, l2, J2, H, g, k, c, mu, kappa, beta;
     double x[ARM_NX];
     ContactRecord run;
-    bool referenced;       /* the gap's reference taken (at the start); else angles 0 */
-    double reference[4];   /* ArmBody's ref1, ref2, y_ref, y_ref_noise (scaled) */
     bool stale, partials_stale;
     ArmBody body;       /* the arm in the scaled units */
     ContactLaw law;     /* mu, delta, epsilon, kappa, beta */
