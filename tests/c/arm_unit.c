@@ -10,19 +10,7 @@
 #include <stdio.h>
 
 #include "arm_body.h"
-
-static int failures, checks;
-
-#define CHECK(cond, ...)                                                 \
-    do {                                                                 \
-        ++checks;                                                        \
-        if (!(cond)) {                                                   \
-            ++failures;                                                  \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);         \
-            fprintf(stderr, __VA_ARGS__);                                \
-            fputc('\n', stderr);                                         \
-        }                                                                \
-    } while (0)
+#include "unit_check.h"
 
 static uint64_t seed = 20261127;
 

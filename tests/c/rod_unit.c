@@ -8,8 +8,7 @@
 #include <stdio.h>
 
 #include "rod.h"
-
-static int failures;
+#include "unit_check.h"
 
 /* The core's event indicators on the rod. */
 static void indicators(const RodParams *p, ContactMode m, const double x[ROD_NX], double z[CONTACT_NZ])
@@ -17,16 +16,6 @@ static void indicators(const RodParams *p, ContactMode m, const double x[ROD_NX]
     const Contact c = rod_contact(p);
     contact_event_indicators(&c, m, x, z);
 }
-
-#define CHECK(cond, ...)                                 \
-    do {                                                 \
-        if (!(cond)) {                                   \
-            ++failures;                                  \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                \
-            fputc('\n', stderr);                         \
-        }                                                \
-    } while (0)
 
 /* A sticking state with the forward fold a + q_+ F_N exactly 0: y is walked
  * ulp by ulp from the fold's root until the indicator, as rod.c computes it,
@@ -197,6 +186,6 @@ int main(void)
     test_a_located_lift_off_is_decided_by_the_free_motions_h_rate();
     test_fast_growth_is_the_slips_with_negative_p();
     test_a_contact_entered_from_flight_slips_the_way_v_points();
-    printf("rod_unit: %s\n", failures ? "FAILED" : "all checks passed");
+    printf("rod_unit: %d checks, %s\n", checks, failures ? "FAILED" : "all checks passed");
     return failures != 0;
 }
