@@ -45,13 +45,13 @@ endfunction()
 # __declspec(dllexport) there, and a DLL with any such export exports nothing else.
 function(painleve_platform_target TARGET)
   target_compile_options(${TARGET} PRIVATE -ffp-contract=off)
-  # glibc: pow (CVODE's) from its oldest symbol version, not GLIBC_2.29 (cmake/glibc_pow.c).
+  # glibc: pow, exp and log from their oldest symbol versions, not GLIBC_2.29 (cmake/glibc_math.c).
   if(CMAKE_SYSTEM_NAME STREQUAL "Linux")
     include(CheckSymbolExists)
     check_symbol_exists(__GLIBC__ features.h PAINLEVE_GLIBC)
     if(PAINLEVE_GLIBC)
-      target_sources(${TARGET} PRIVATE ${PAINLEVE_PLATFORM_DIR}/glibc_pow.c)
-      target_link_options(${TARGET} PRIVATE -Wl,--wrap=pow)
+      target_sources(${TARGET} PRIVATE ${PAINLEVE_PLATFORM_DIR}/glibc_math.c)
+      target_link_options(${TARGET} PRIVATE -Wl,--wrap=pow,--wrap=exp,--wrap=log)
     endif()
   endif()
   # macOS (zig's clang, cmake/toolchains/*-macos.cmake): clang warns where GCC does not, about

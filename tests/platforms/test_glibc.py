@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Which glibc the Linux binaries need. CVODE's pow is linked to glibc's oldest
-pow symbol (cmake/glibc_pow.c), not pow@GLIBC_2.29, so the x86_64 binaries need glibc 2.14
+"""Which glibc the Linux binaries need. pow, exp and log are linked to glibc's oldest
+symbols (cmake/glibc_math.c), not their GLIBC_2.29 ones, so the x86_64 binaries need glibc 2.14
 (memcpy) and the aarch64 ones 2.17 (the first aarch64 glibc): RHEL 7 and 8 load them. Read
 from each binary's dynamic symbol versions (objdump -T), for the native build and every
 multi-platform FMU (build/platforms/, `bash run.sh platforms`)."""
