@@ -14,21 +14,10 @@
 #include <string.h>
 
 #include "fmi_harness.h"
+#include "unit_check.h"
 
 static FmiApi api;
 static const FmiApi *const f = &api;
-static long checks, failures;
-
-#define CHECK(cond, ...)                                            \
-    do {                                                            \
-        ++checks;                                                   \
-        if (!(cond)) {                                              \
-            ++failures;                                             \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);   \
-            fprintf(stderr, __VA_ARGS__);                           \
-            fputc('\n', stderr);                                    \
-        }                                                           \
-    } while (0)
 
 /* The calls of the set-up and of each advance (the step budget), each named by the message when it fails. */
 static const char *const SETUP[] = { "SUNContext_Create", "CVodeCreate", "N_VNew_Serial", "SUNDenseMatrix",
@@ -112,6 +101,6 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < N_SETUP; ++i) CHECK(named[i], "no message named %s as the call that failed", SETUP[i]);
     fmi2_functions_unload(&api);
-    printf("CVODE failing at each of its %ld SUNDIALS calls: %ld checks, %ld failed\n", made, checks, failures);
+    printf("CVODE failing at each of its %ld SUNDIALS calls: %d checks, %d failed\n", made, checks, failures);
     return failures ? 1 : 0;
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
-/* CHECK(cond, format, ...) for the C unit tests (rod_unit.c, arm_unit.c): counts the checks and
+/* CHECK(cond, format, ...) for the C tests (rod_unit.c, arm_unit.c, cvode_setup_faults.c): counts the checks and
  * the failures, and prints each failure with its place and the message. */
 #ifndef UNIT_CHECK_H
 #define UNIT_CHECK_H
