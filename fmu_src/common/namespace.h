@@ -23,6 +23,7 @@
 /* contact.c, contact_events.c, contact_record.c: the contact core over a body */
 #define contact_body NAMESPACED(contact_body)
 #define contact_gap_rows NAMESPACED(contact_gap_rows)
+#define contact_nx NAMESPACED(contact_nx)
 #define contact_coeffs NAMESPACED(contact_coeffs)
 #define contact_compliance NAMESPACED(contact_compliance)
 #define contact_decide_mode NAMESPACED(contact_decide_mode)

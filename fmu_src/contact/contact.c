@@ -75,10 +75,11 @@ bool contact_gap_rows(const Contact *c, const double x[], ContactGapRows *r)
     *r = (ContactGapRows){ .y_scale = c->law.epsilon * c->law.epsilon, .w_scale = c->law.epsilon };
     b->gap_rows(c->params, x, &r->y_value, &r->w_value, dy_dq, dw_dq);
     for (int i = 0; i < b->dof; ++i) {
-        r->y[b->position[i]] = dy_dq[i];
+        r->y[b->position[i]] = b->has_gap_state ? 0.0 : dy_dq[i];   /* y moves with its own state alone */
         r->w[b->position[i]] = dw_dq[i];
         r->w[b->velocity[i]] = dy_dq[i];
     }
+    if (b->has_gap_state) r->y[b->gap_state] = 1;
     return true;
 }
 
@@ -159,10 +160,16 @@ double contact_energy(const Contact *c, ContactMode m, const double x[])
 /* u_i' in mode m: free part plus the contact forces' (the friction opposes slip s, or holds
  * v' = 0 while sticking: the Filippov combination of the two slip fields, with which
  * F_T v = 0 and only the damper works; docs/model.md §1). */
+int contact_nx(const Body *b)
+{
+    return 2 * b->dof + (b->has_gap_state ? 1 : 0);
+}
+
 void contact_derivatives(const Contact *c, ContactMode m, const double x[], double dx[])
 {
     const Body *b = c->body;
     const BodyState s = contact_body(c, x);
+    if (b->has_gap_state) dx[b->gap_state] = s.w;
     const double F = normal_force(c, m, &s);
     const double F_T = sticking(m) ? sticking_friction(&s, F) : 0.0;
     const double smu = (m.slip >= 0 ? 1.0 : -1.0) * c->law.mu;   /* slip 0 out of contact: F = 0 */
@@ -179,7 +186,7 @@ void contact_derivatives(const Contact *c, ContactMode m, const double x[], doub
 
 void contact_jacobian_differences(const Contact *c, ContactMode m, const double x[], double J[])
 {
-    const int n = 2 * c->body->dof;
+    const int n = contact_nx(c->body);
     double nominal[CONTACT_MAX_NX], trial[CONTACT_MAX_NX], up[CONTACT_MAX_NX], down[CONTACT_MAX_NX];
     c->body->nominals(c->params, c->law.epsilon, nominal);
     for (int j = 0; j < n; ++j) {
@@ -325,12 +332,10 @@ ContactSurfaces contact_surfaces_of(const Contact *c, ContactMode m, const doubl
     /* in flight the force indicator is min(-y/eps, h): the smaller one crossed */
     const bool force = crossed & 1u << CONTACT_Z_FORCE && (m.contact || h.h < -s.y / eps);
     const bool gap = crossed & 1u << CONTACT_Z_Y || (crossed & 1u << CONTACT_Z_FORCE && !force);
-    /* on a surface where the root finder could have put it: within the indicator's change over dt,
-     * or where the state's own resolution puts y (an angle's ulp moves a linkage's tip) */
+    /* on a surface where the root finder could have put it: within the indicator's change over dt */
     return (ContactSurfaces){
-        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise + s.y_resolution,
-        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s) +
-                                           fabs(h.h_yh) * s.y_resolution / eps,
+        .gap = gap && fabs(s.y) <= fabs(s.w) * dt + s.y_noise,
+        .force = force && fabs(h.h) <= fabs(free_h_rate(&h, &s, eps)) * dt + force_noise(&c->law, &s),
     };
 }
 

@@ -25,7 +25,7 @@
 #include "namespace.h" /* every source includes this header: their names, prefixed */
 
 #define BODY_MAX_DOF 3
-#define CONTACT_MAX_NX (2 * BODY_MAX_DOF)
+#define CONTACT_MAX_NX (2 * BODY_MAX_DOF + 1)   /* the coordinates, their rates, a gap state */
 
 /* Event indicators. Slots 2 and 3 change meaning with the mode (contact.c). */
 enum { CONTACT_Z_Y, CONTACT_Z_FORCE, CONTACT_Z_SLIP, CONTACT_Z_AUX, CONTACT_NZ };
@@ -48,7 +48,6 @@ typedef struct {
 typedef struct {
     double x, y, v, w;              /* the contact point: g_T, g_N and their rates */
     double y_noise, w_noise, v_noise; /* their rounding errors as computed (0 for a state itself) */
-    double y_resolution;            /* the smallest move of y the state can make (0: y is a state) */
     double free[BODY_MAX_DOF];      /* u' with no contact force */
     double normal[BODY_MAX_DOF];    /* u' per unit F_N: M^-1 W_N^T */
     double friction[BODY_MAX_DOF];  /* u' per unit F_T, taken with a minus sign: M^-1 W_T^T */
@@ -72,7 +71,15 @@ typedef struct {
      * coordinates, so that an integrator can hold y and w to their own scale (contact_gap_rows);
      * else NULL. */
     void (*gap_rows)(const void *params, const double x[], double *y, double *w, double dy_dq[], double dw_dq[]);
+    /* A body whose gap is not one of its coordinates may hold it as one more state, x[gap_state],
+     * integrated as y' = w and read by its evaluate: an integrator's error control then holds y
+     * to its own scale, eps^2, however large the coordinates are (docs/general_body.md §1). */
+    bool has_gap_state;
+    int gap_state;
 } Body;
+
+/* The number of states of a body: its coordinates, their rates and its gap state if it has one. */
+int contact_nx(const Body *b);
 
 /* A body with its parameters and the contact law: what every function below runs on. */
 typedef struct {
@@ -142,7 +149,7 @@ double contact_energy(const Contact *c, ContactMode m, const double x[]);
 void contact_derivatives(const Contact *c, ContactMode m, const double x[], double dx[]);
 
 /* J[i][j] = d dx_i/d x_j by central differences of contact_derivatives, for a body
- * without analytic partials (J is n x n, n = 2 dof, row-major in J[i * n + j]). */
+ * without analytic partials (J is n x n, n = contact_nx, row-major in J[i * n + j]). */
 void contact_jacobian_differences(const Contact *c, ContactMode m, const double x[], double J[]);
 
 void contact_event_indicators(const Contact *c, ContactMode m, const double x[], double z[CONTACT_NZ]);

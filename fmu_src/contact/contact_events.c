@@ -30,7 +30,7 @@ static int wanted_side(const Contact *c, ContactMode m, int i, const double x[])
 static int steepest_state(const Contact *c, ContactMode m, int i, const double x[], const double nominal[],
                           int *direction)
 {
-    const int n = 2 * c->body->dof;
+    const int n = contact_nx(c->body);
     double z0[CONTACT_NZ], z[CONTACT_NZ], trial[CONTACT_MAX_NX];
     contact_event_indicators(c, m, x, z0);
     int best = -1;

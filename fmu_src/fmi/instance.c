@@ -282,7 +282,7 @@ Status instance_derivatives(Instance *in, const char *call, const unsigned int u
     const bool initializing = in->state == InitializationMode;
     for (size_t j = 0; j < n_knowns; ++j) {
         const VariableInfo *k = model_variable(knowns[j]);
-        if (!k || !(k->kind == KIND_STATE || k->kind == KIND_INPUT || (initializing && k->kind == KIND_PARAMETER)))
+        if (!k || !(MODEL_KIND_IS_STATE(k->kind) || k->kind == KIND_INPUT || (initializing && k->kind == KIND_PARAMETER)))
             return instance_fail(in, call, "known value reference %u is not a continuous state or input%s", knowns[j],
                                  initializing ? " nor a parameter" : " (parameters are knowns in Initialization Mode only)");
     }
@@ -298,7 +298,7 @@ Status instance_derivatives(Instance *in, const char *call, const unsigned int u
             return instance_fail(in, call, "unknown value reference %u is not a Real variable: directional derivatives "
                                  "are defined for Reals only", unknowns[i]);
         const bool unknown = u->kind == KIND_CALCULATED || (u->kind == KIND_CALCULATED_PARAMETER && initializing) ||
-                             (u->kind == KIND_STATE && !initializing) ||
+                             (u->kind == KIND_STATE && !initializing) || u->kind == KIND_DERIVED_STATE ||
                              (u->kind == KIND_DISCRETE && in->state != ContinuousTimeMode);
         if (!unknown)
             return instance_fail(in, call, "%s is not an unknown in %s", u->name, instance_state_name(in->state));

@@ -20,8 +20,8 @@
  *                        model_decide_initial_mode, model_begin_integration and
  *                        model_event_update; default: no indicators and no modes;
  *   MODEL_CLOSED_FLIGHT  provides the model_flight_* functions (below); default: none;
- *   MODEL_GAP_ROWS       provides model_gap_rows_at (below: a contact's gap that is no
- *                        state); default: the states' own error control alone;
+ *   MODEL_GAP_ROWS       provides model_gap_rows_at (below: a contact's gap or normal
+ *                        rate that is no state); default: the states' own error control;
  *   MODEL_STEP_ANCHOR    provides model_step_anchor (below: what evaluations near a
  *                        state share); default: none;
  *   MODEL_NO_PARTIALS    (a message) has no partial derivatives, and provides no
@@ -46,10 +46,17 @@ typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
  * INPUT: continuous, set by the master at any time (causality input);
  * CALCULATED: continuous, derived; DISCRETE: changes only at events;
  * CALCULATED_PARAMETER: derived from parameters while initializing, fixed
- * after (causality calculatedParameter: an unknown of Initialization Mode only). */
+ * after (causality calculatedParameter: an unknown of Initialization Mode only);
+ * DERIVED_STATE: a continuous state the model calculates while initializing
+ * (initial="calculated": no fmi2SetReal sets it, fmi2SetContinuousStates does; a
+ * model with one provides no partial derivatives, MODEL_NO_PARTIALS). */
 typedef enum {
-    KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT, KIND_CALCULATED_PARAMETER
+    KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT, KIND_CALCULATED_PARAMETER,
+    KIND_DERIVED_STATE
 } VariableKind;
+
+/* A continuous state, set by the user or derived (a variable of kind STATE or DERIVED_STATE). */
+#define MODEL_KIND_IS_STATE(kind) ((kind) == KIND_STATE || (kind) == KIND_DERIVED_STATE)
 
 /* Value references, in the order of config.h's list and modelDescription.xml. */
 #define MODEL_VR_ENUM(id, ...) VR_##id,
@@ -155,9 +162,9 @@ double model_flight_sample_step(const ModelFlight *f, double t);
 
 /* ------------------------------------- the contact in the error control (optional) */
 
-/* A model whose config.h defines MODEL_GAP_ROWS has states that are not its contact's gap and
- * normal rate (a linkage's angles, whose size says nothing of the gap's eps^2): it gives the two
- * as linear functions of a change of state at x (rows), with their values and nominals there,
+/* A model whose config.h defines MODEL_GAP_ROWS has states that are not its contact's gap or
+ * normal rate (a linkage's angles and rates, whose size says nothing of the rate's eps): it gives
+ * the two as linear functions of a change of state at x (rows), with their values and nominals there,
  * so that an embedded integrator's error control holds them to their own scale, as it holds a
  * state to its nominal (docs/general_body.md §1). */
 #ifdef MODEL_GAP_ROWS

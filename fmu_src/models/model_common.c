@@ -49,6 +49,7 @@ bool model_settable(const VariableInfo *info)
 #define ASSIGN_CALCULATED(lvalue, value) (void)(value)
 #define ASSIGN_DISCRETE ASSIGN_CALCULATED
 #define ASSIGN_CALCULATED_PARAMETER ASSIGN_CALCULATED
+#define ASSIGN_DERIVED_STATE ASSIGN_CALCULATED
 #define MODEL_ASSIGN(id, name, type, kind, field, min, max) case VR_##id: ASSIGN_##kind(m->field, value); break;
 #define MODEL_READ(id, name, type, kind, field, min, max) case VR_##id: return (double)m->field;
 
@@ -77,6 +78,7 @@ const char *model_check_range(unsigned int vr, double value)
 #define FIELD_DISCRETE FIELD_PARAMETER
 #define FIELD_CALCULATED(id, name, type, field)
 #define FIELD_CALCULATED_PARAMETER FIELD_CALCULATED
+#define FIELD_DERIVED_STATE FIELD_PARAMETER
 #define MODEL_FIELD(id, name, type, kind, field, min, max) FIELD_##kind(id, name, type, field)
 #define INTERNAL_FIELD(name, field, type) { name, offsetof(Model, field), TYPE_##type },
 const ModelField model_fields[] = { MODEL_VARIABLES(MODEL_FIELD) MODEL_INTERNALS(INTERNAL_FIELD) };
@@ -110,7 +112,7 @@ double model_get(Model *m, unsigned int vr)
 unsigned int model_state_vr(size_t i)
 {
     for (unsigned int vr = 0; vr < VR_COUNT; ++vr)
-        if (VARIABLES[vr].kind == KIND_STATE && i-- == 0) return vr;
+        if (MODEL_KIND_IS_STATE(VARIABLES[vr].kind) && i-- == 0) return vr;
     return VR_COUNT;
 }
 

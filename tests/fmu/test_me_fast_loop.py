@@ -88,3 +88,29 @@ def test_the_fmpy_internals_the_fast_loop_uses_are_where_it_expects(loaded):
         assert list(data[:6]) == list(instance.getReal([loaded.vr[k] for k in STATES]))
     finally:
         instance.freeInstance()
+
+
+def test_a_run_past_its_event_budget_stops_with_a_message(experiment, monkeypatch):
+    # An IWC from the consistent start has more than one event (contact, stick or slip changes,
+    # lift-off, return): with a budget of one, the run must stop and say why, not go on.
+    from painleve.fmu import me_fast_loop
+    monkeypatch.setattr(me_fast_loop, "MAX_EVENTS", 1)
+    with pytest.raises(SimulationError, match="1 events before t = .* the run chatters"):
+        experiment.run(Case(epsilon=1e-3))
+    monkeypatch.undo()
+    assert experiment.run(Case(epsilon=1e-3)).iwc      # the instance runs on
+
+
+def test_an_event_iteration_that_never_settles_stops():
+    class Restless:            # an FMU that asks for another iteration every time
+        calls = 0
+
+        def newDiscreteStates(self):
+            self.calls += 1
+            return (True, False, False, False, False, 0.0)
+
+    fmu = Restless()
+    with pytest.raises(RuntimeError, match="did not settle"):
+        event_iteration(fmu)
+    from painleve.fmu.me_fast_loop import MAX_EVENT_ITERATIONS
+    assert fmu.calls == MAX_EVENT_ITERATIONS

@@ -34,28 +34,10 @@ static void solve(double M11, double M12, double M22, double det, const double f
     u[1] = (M11 * f[1] - M12 * f[0]) / det;
 }
 
-void arm_set_reference(ArmBody *b, double ref1, double ref2, bool on_floor)
+double arm_height(const ArmBody *b, double theta1, double theta2)
 {
-    b->ref1 = ref1;
-    b->ref2 = ref2;
-    const double a = b->l1 * sin(ref1), c = b->l2 * sin(ref2);
-    b->y_ref = on_floor ? 0 : b->H + a + c;
-    b->y_ref_noise = on_floor ? 0 : 8 * DBL_EPSILON * (fabs(b->H) + fabs(a) + fabs(c));
-}
-
-/* l (sin t - sin r) = 2 l cos((t + r)/2) sin((t - r)/2): t - r exact near r, so the term is
- * accurate to its own size however large sin t is. */
-static double rise(double l, double t, double r)
-{
-    return 2 * l * cos(0.5 * (t + r)) * sin(0.5 * (t - r));
-}
-
-/* The gap and its rounding error at angles t1, t2. */
-static double gap(const ArmBody *b, double t1, double t2, double *noise)
-{
-    const double r1 = rise(b->l1, t1, b->ref1), r2 = rise(b->l2, t2, b->ref2);
-    *noise = b->y_ref_noise + 8 * DBL_EPSILON * (fabs(b->y_ref) + fabs(r1) + fabs(r2));
-    return b->y_ref + (r1 + r2);
+    const double a = b->l1 * sin(theta1), c = b->l2 * sin(theta2), y = b->H + a + c;
+    return fabs(y) <= 8 * DBL_EPSILON * (fabs(b->H) + fabs(a) + fabs(c)) ? 0.0 : y;
 }
 
 static void arm_evaluate(const void *params, const double x[], BodyState *s)
@@ -77,8 +59,8 @@ static void arm_evaluate(const void *params, const double x[], BodyState *s)
     solve(M[0][0], M[0][1], M[1][1], det, WT, friction);
     const double cent_x = l1 * c1 * w1 * w1 + l2 * c2 * w2 * w2, cent_y = l1 * s1 * w1 * w1 + l2 * s2 * w2 * w2;
     s->x = l1 * c1 + l2 * c2;
-    s->y = gap(b, t1, t2, &s->y_noise);
-    s->y_resolution = DBL_EPSILON * (fabs(l1 * c1 * t1) + fabs(l2 * c2 * t2));
+    s->y = x[ARM_Y];   /* a state: no rounding error */
+    s->y_noise = 0;
     s->v = WT[0] * w1 + WT[1] * w2;
     s->w = WN[0] * w1 + WN[1] * w2;
     /* The rounding of the sums above: ulps of their largest terms. */
@@ -103,16 +85,17 @@ static void arm_evaluate(const void *params, const double x[], BodyState *s)
 }
 
 /* The contact's scales: the gap ~ eps^2 and its rate ~ eps move with the angles and rates by
- * as much (lengths are O(1) in these units), so those are the angles' and rates' nominals. */
+ * as much (lengths are O(1) in these units), so those are the angles', the rates' and y's nominals. */
 static void arm_nominals(const void *params, double epsilon, double nominal[])
 {
     (void)params;
-    nominal[ARM_THETA1] = nominal[ARM_THETA2] = epsilon * epsilon;
+    nominal[ARM_THETA1] = nominal[ARM_THETA2] = nominal[ARM_Y] = epsilon * epsilon;
     nominal[ARM_OMEGA1] = nominal[ARM_OMEGA2] = epsilon;
 }
 
-/* The tip's height and normal rate are sums over the links: y = H + l1 sin theta1 + l2 sin theta2
- * (gap()), w = W_N omega, so dy/dtheta = W_N and dw/dtheta_i = -l_i sin theta_i omega_i. */
+/* The tip's height is its state, and its normal rate the sum over the links w = W_N omega, so
+ * dy/dtheta = W_N (what y' = w would move it by; the core holds y to its state alone) and
+ * dw/dtheta_i = -l_i sin theta_i omega_i. */
 static void arm_gap_rows(const void *params, const double x[], double *y, double *w, double dy_dq[],
                          double dw_dq[])
 {
@@ -122,12 +105,11 @@ static void arm_gap_rows(const void *params, const double x[], double *y, double
     dy_dq[1] = b->l2 * c2;
     dw_dq[0] = -b->l1 * s1 * x[ARM_OMEGA1];
     dw_dq[1] = -b->l2 * s2 * x[ARM_OMEGA2];
-    double noise;
-    *y = gap(b, x[ARM_THETA1], x[ARM_THETA2], &noise);
+    *y = x[ARM_Y];
     *w = dy_dq[0] * x[ARM_OMEGA1] + dy_dq[1] * x[ARM_OMEGA2];
 }
 
 /* No coordinate is the tip's x: a stick begins by the friction impulse that stops the slip. */
 const Body arm_body = { .dof = 2, .position = { ARM_THETA1, ARM_THETA2 }, .velocity = { ARM_OMEGA1, ARM_OMEGA2 },
                         .slip_coordinate = -1, .evaluate = arm_evaluate, .nominals = arm_nominals,
-                        .gap_rows = arm_gap_rows };
+                        .gap_rows = arm_gap_rows, .has_gap_state = true, .gap_state = ARM_Y };

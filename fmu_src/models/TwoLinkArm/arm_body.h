@@ -12,21 +12,19 @@
 
 #include "contact.h"
 
-/* The arm's state in the core's vector: angles, then their rates (the XML's order). */
-enum { ARM_THETA1, ARM_THETA2, ARM_OMEGA1, ARM_OMEGA2, ARM_NX };
+/* The arm's state in the core's vector (the XML's order): angles, their rates, and the tip's
+ * height y as a state of its own (the core's gap state, y' = w), so that an integrator holds the
+ * gap to its own scale, eps^2, not to the angles' rtol |theta| (docs/general_body.md §1). */
+enum { ARM_THETA1, ARM_THETA2, ARM_OMEGA1, ARM_OMEGA2, ARM_Y, ARM_NX };
 
-/* The gap is measured from a reference configuration: y = y_ref + l1 (sin theta1 - sin ref1)
- * + l2 (sin theta2 - sin ref2), the differences in a form exact near the reference (the model
- * measures from angles 0, y_ref = H; docs/general_body.md §1 says what a reference at the start
- * would give a tip placed on the floor). */
 typedef struct {
     double m1, l1, J1, m2, l2, J2, H; /* scaled: m1 + m2 = 1, l1 + l2 = 1 */
-    double ref1, ref2;                /* the reference angles */
-    double y_ref, y_ref_noise;        /* the gap there, and its rounding error */
 } ArmBody;
 
-/* The reference at angles (ref1, ref2): y_ref computed, or 0 exactly when `on_floor`. */
-void arm_set_reference(ArmBody *b, double ref1, double ref2, bool on_floor);
+/* The tip's height H + l1 sin theta1 + l2 sin theta2 at the angles, the start of the state y:
+ * 0 exactly when within its rounding error of 0 (a tip placed on the floor is on it, not an ulp
+ * above or below, which a grazing start would turn into a square root's worth of its outcome). */
+double arm_height(const ArmBody *b, double theta1, double theta2);
 
 /* The core's description of the arm (Body; params: an ArmBody). */
 extern const Body arm_body;

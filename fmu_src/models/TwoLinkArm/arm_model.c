@@ -3,11 +3,12 @@
  * the contact core (contact.c, contact_events.c, contact_record.c). Knows the arm,
  * not FMI.
  *
- * The model keeps SI states (theta1, theta2 in rad, omega1, omega2 in rad/s);
+ * The model keeps SI states (theta1, theta2 in rad, omega1, omega2 in rad/s, the tip's
+ * height y in m, calculated from the angles until the start and integrated after it);
  * the core runs on the scaled arm, exactly as PainleveRodSI's rod with m -> M and
  * l -> L: the reference length L = l1 + l2, mass M = m1 + m2, time T = sqrt(L/g),
  * force M g, so
- *   xs = (theta1, theta2, omega1 T, omega2 T),
+ *   xs = (theta1, theta2, omega1 T, omega2 T, y / L),
  *   epsilon = sqrt(M g/(k L)), delta = c/sqrt(M k)   (docs/general_body.md). */
 #include "model.h"
 
@@ -24,18 +25,24 @@ static void scaled(const Model *m, ArmBody *b, ContactLaw *law)
     const double M = m->m1 + m->m2, L = m->l1 + m->l2, ML2 = M * L * L;
     *b = (ArmBody){ .m1 = m->m1 / M, .l1 = m->l1 / L, .J1 = m->J1 / ML2,
                     .m2 = m->m2 / M, .l2 = m->l2 / L, .J2 = m->J2 / ML2, .H = m->H / L };
-    arm_set_reference(b, 0, 0, false);   /* the gap from angles 0: y_ref = H */
     *law = (ContactLaw){ .mu = m->mu, .delta = m->c / sqrt(M * m->k), .epsilon = sqrt(M * m->g / (m->k * L)),
                          .kappa = m->kappa, .beta = m->beta };
 }
 
-static void scale_state(const Model *m, const double x[ARM_NX], double xs[ARM_NX])
+/* A state's SI value per scaled unit: 1 for an angle, 1/T for a rate, L for the height. */
+static void state_units(const Model *m, double unit[ARM_NX])
 {
     const double T = time_unit(m);
-    xs[ARM_THETA1] = x[ARM_THETA1];
-    xs[ARM_THETA2] = x[ARM_THETA2];
-    xs[ARM_OMEGA1] = x[ARM_OMEGA1] * T;
-    xs[ARM_OMEGA2] = x[ARM_OMEGA2] * T;
+    unit[ARM_THETA1] = unit[ARM_THETA2] = 1;
+    unit[ARM_OMEGA1] = unit[ARM_OMEGA2] = 1 / T;
+    unit[ARM_Y] = m->l1 + m->l2;
+}
+
+static void scale_state(const Model *m, const double x[ARM_NX], double xs[ARM_NX])
+{
+    double unit[ARM_NX];
+    state_units(m, unit);
+    for (int i = 0; i < ARM_NX; ++i) xs[i] = x[i] / unit[i];
 }
 
 /* The core on the scaled arm: valid while `b` lives. */
@@ -60,17 +67,17 @@ static Contact contact_at(const Model *m, const double x[ARM_NX], Trial *t)
     return contact_of(&t->body, &t->law);
 }
 
-/* der(theta) = omega; der(omega) = (g/L) times the scaled omega'. */
+/* der(theta) = omega; der(omega) = (g/L) times the scaled omega'; der(y) = w (L/T times the scaled). */
 static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX], const double xs[ARM_NX],
                         double dx[ARM_NX])
 {
-    double dxs[ARM_NX];
+    double dxs[ARM_NX], unit[ARM_NX];
     contact_derivatives(c, m->run.mode, xs, dxs);
-    const double rate = m->g / (m->l1 + m->l2);
-    dx[ARM_THETA1] = x[ARM_OMEGA1];
+    state_units(m, unit);
+    const double T = time_unit(m);
+    for (int i = 0; i < ARM_NX; ++i) dx[i] = unit[i] / T * dxs[i];
+    dx[ARM_THETA1] = x[ARM_OMEGA1];   /* exactly the rates */
     dx[ARM_THETA2] = x[ARM_OMEGA2];
-    dx[ARM_OMEGA1] = rate * dxs[ARM_OMEGA1];
-    dx[ARM_OMEGA2] = rate * dxs[ARM_OMEGA2];
 }
 
 /* ------------------------------------------------------------ variables */
@@ -98,7 +105,6 @@ static void outputs(Model *m, const Contact *c)
     const ContactCoeffs k = contact_coeffs(&c->law, &s);
     double *out = m->out;
     out[ARM_OUT_X] = L * s.x;
-    out[ARM_OUT_Y] = L * s.y;
     out[ARM_OUT_V] = U * s.v;
     out[ARM_OUT_W] = U * s.w;
     out[ARM_OUT_F_N] = Mg * contact_normal_force(c, m->run.mode, m->xs);
@@ -112,6 +118,7 @@ void model_update(Model *m)
 {
     if (!m->stale) return;
     scaled(m, &m->body, &m->law);
+    if (!m->started) m->x[ARM_Y] = (m->l1 + m->l2) * arm_height(&m->body, m->x[ARM_THETA1], m->x[ARM_THETA2]);
     scale_state(m, m->x, m->xs);
     const Contact c = contact_of(&m->body, &m->law);
     derivatives(m, &c, m->x, m->xs, m->dx);
@@ -120,15 +127,16 @@ void model_update(Model *m)
     m->stale = false;
 }
 
-/* The core's nominals (angles eps^2, scaled rates eps), the rates in rad/s. */
+/* The core's nominals (angles and y eps^2, scaled rates eps), in SI. */
 void model_get_nominals(const Model *m, double nominal[MODEL_NX])
 {
     ArmBody b;
     ContactLaw law;
+    double unit[ARM_NX];
     scaled(m, &b, &law);
     arm_body.nominals(&b, law.epsilon, nominal);
-    nominal[ARM_OMEGA1] /= time_unit(m);
-    nominal[ARM_OMEGA2] /= time_unit(m);
+    state_units(m, unit);
+    for (int i = 0; i < ARM_NX; ++i) nominal[i] *= unit[i];
 }
 
 /* The core's rows over the scaled state, in SI: y = L ys, w = (L/T) ws with rates omega = omegas/T. */
@@ -139,10 +147,12 @@ void model_gap_rows_at(const Model *m, double time, const double x[MODEL_NX], Mo
     const Contact c = contact_at(m, x, &t);
     ContactGapRows g;
     contact_gap_rows(&c, t.xs, &g);
-    const double L = m->l1 + m->l2, T = time_unit(m), to_state[ARM_NX] = { 1, 1, T, T };
+    const double L = m->l1 + m->l2, T = time_unit(m);
+    double unit[ARM_NX];
+    state_units(m, unit);
     for (int i = 0; i < ARM_NX; ++i) {
-        r->row[0][i] = L * g.y[i] * to_state[i];
-        r->row[1][i] = L / T * g.w[i] * to_state[i];
+        r->row[0][i] = L * g.y[i] / unit[i];
+        r->row[1][i] = L / T * g.w[i] / unit[i];
     }
     r->value[0] = L * g.y_value;
     r->value[1] = L / T * g.w_value;
@@ -167,19 +177,18 @@ void model_indicators_at(const Model *m, double time, const double x[MODEL_NX], 
 }
 
 /* The core's central differences on the scaled arm (the arm has no analytic partials), in
- * SI: d der(omega_i)/d x_j = (g/L) J_s[i][j] / scale_j, scale = (1, 1, 1/T, 1/T). */
+ * SI: d der(x_i)/d x_j = (unit_i / T) J_s[i][j] / unit_j (state_units). */
 void model_jacobian_at(const Model *m, double time, const double x[MODEL_NX], double J[MODEL_NX][MODEL_NX])
 {
     (void)time;
     Trial t;
-    double Js[ARM_NX * ARM_NX];
+    double Js[ARM_NX * ARM_NX], unit[ARM_NX];
     const Contact c = contact_at(m, x, &t);
     contact_jacobian_differences(&c, m->run.mode, t.xs, Js);
-    const double rate = m->g / (m->l1 + m->l2), T = time_unit(m);
+    state_units(m, unit);
+    const double T = time_unit(m);
     for (int i = 0; i < ARM_NX; ++i)
-        for (int j = 0; j < ARM_NX; ++j)
-            J[i][j] = i >= ARM_OMEGA1 ? rate * Js[i * ARM_NX + j] * (j >= ARM_OMEGA1 ? T : 1.0) : 0.0;
-    J[ARM_THETA1][ARM_OMEGA1] = J[ARM_THETA2][ARM_OMEGA2] = 1;
+        for (int j = 0; j < ARM_NX; ++j) J[i][j] = unit[i] / T * Js[i * ARM_NX + j] / unit[j];
 }
 
 /* ------------------------------------------------------- modes, events */
@@ -195,14 +204,16 @@ void model_decide_initial_mode(Model *m)
 /* What the core changed in the scaled state goes back to the SI one. */
 static void unscale_changes(Model *m, const double xs[ARM_NX])
 {
-    const double T = time_unit(m);
+    double unit[ARM_NX];
+    state_units(m, unit);
     for (int j = 0; j < ARM_NX; ++j)
-        if (xs[j] != m->xs[j]) m->x[j] = j >= ARM_OMEGA1 ? xs[j] / T : xs[j];
+        if (xs[j] != m->xs[j]) m->x[j] = xs[j] * unit[j];
 }
 
 void model_start(Model *m, double time, char *text, size_t size)
 {
     model_update(m);
+    m->started = true;   /* y, calculated from the angles so far, is integrated from here */
     const Contact c = contact_of(&m->body, &m->law);
     double xs[ARM_NX];
     memcpy(xs, m->xs, sizeof xs);
@@ -234,5 +245,6 @@ bool model_event_update(Model *m, double time, ModelEvent *e)
 
 const char *model_internals_implausible(const Model *m)
 {
+    if (!(fabs(m->x[ARM_Y]) <= ARM_STATE_BOUND)) return "y";
     return contact_record_implausible(&m->run);
 }

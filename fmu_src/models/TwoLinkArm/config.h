@@ -16,7 +16,7 @@
 #define MODEL_NZ CONTACT_NZ
 
 /* The optional parts it provides (model.h): the contact's events, and its gap and normal rate
- * as rows for the error control (the angles are the states). */
+ * as rows for the error control (the gap is a state, the normal rate is not). */
 #define MODEL_EVENTS
 #define MODEL_GAP_ROWS
 
@@ -24,7 +24,7 @@
  * fmi2GetDirectionalDerivative and its FMI 3.0 twins answer this error. */
 #define MODEL_NO_PARTIALS "TwoLinkArm provides no directional derivatives (providesDirectionalDerivative = false)"
 
-/* Bounds on the states (angles in rad, rates in rad/s). */
+/* Bounds on the states (angles in rad, rates in rad/s, the tip's height in m). */
 #define ARM_STATE_BOUND 1e6
 
 /* VARIABLE(ID, name, type, kind, field, min, max), as in models/PainleveRod/config.h.
@@ -55,7 +55,7 @@
     VARIABLE(DER_OMEGA1, "der(omega1)", REAL, CALCULATED, dx[ARM_OMEGA1], 0, 0)                    \
     VARIABLE(DER_OMEGA2, "der(omega2)", REAL, CALCULATED, dx[ARM_OMEGA2], 0, 0)                    \
     VARIABLE(X, "x", REAL, CALCULATED, out[ARM_OUT_X], 0, 0)                                       \
-    VARIABLE(Y, "y", REAL, CALCULATED, out[ARM_OUT_Y], 0, 0)                                       \
+    VARIABLE(Y, "y", REAL, DERIVED_STATE, x[ARM_Y], -ARM_STATE_BOUND, ARM_STATE_BOUND)             \
     VARIABLE(V, "v", REAL, CALCULATED, out[ARM_OUT_V], 0, 0)                                       \
     VARIABLE(W, "w", REAL, CALCULATED, out[ARM_OUT_W], 0, 0)                                       \
     VARIABLE(F_N, "F_N", REAL, CALCULATED, out[ARM_OUT_F_N], 0, 0)                                 \
@@ -63,12 +63,14 @@
     VARIABLE(ENERGY, "energy", REAL, CALCULATED, out[ARM_OUT_ENERGY], 0, 0)                        \
     CONTACT_COEFFICIENT_VARIABLES(VARIABLE, out, ARM_OUT_A)                                        \
     CONTACT_RECORD_TIMES(VARIABLE)                                                                 \
-    CONTACT_RECORD_MODES(VARIABLE)
+    CONTACT_RECORD_MODES(VARIABLE)                                                                 \
+    VARIABLE(DER_Y, "der(y)", REAL, CALCULATED, dx[ARM_Y], 0, 0)
 
-#define MODEL_INTERNALS(INTERNAL) CONTACT_RECORD_INTERNALS(INTERNAL)
+/* Whether the start has been: y is calculated from the angles before it and integrated after. */
+#define MODEL_INTERNALS(INTERNAL) CONTACT_RECORD_INTERNALS(INTERNAL) INTERNAL("started", started, BOOLEAN)
 
-/* Outputs: the tip (SI), the contact forces and the energy (SI), the coefficients (scaled). */
-enum { ARM_OUT_X, ARM_OUT_Y, ARM_OUT_V, ARM_OUT_W, ARM_OUT_F_N, ARM_OUT_F_T, ARM_OUT_ENERGY, ARM_OUT_A,
+/* Outputs: the tip (SI; its height is a state), the contact forces and the energy (SI), the coefficients (scaled). */
+enum { ARM_OUT_X, ARM_OUT_V, ARM_OUT_W, ARM_OUT_F_N, ARM_OUT_F_T, ARM_OUT_ENERGY, ARM_OUT_A,
        ARM_NOUT = ARM_OUT_A + 7 };
 
 /* The model's data: SI parameters and states, the event record; derived and cached until a
@@ -77,6 +79,7 @@ typedef struct {
     double m1, l1, J1, m2, l2, J2, H, g, k, c, mu, kappa, beta;
     double x[ARM_NX];
     ContactRecord run;
+    bool started;
     bool stale, partials_stale;
     ArmBody body;       /* the arm in the scaled units */
     ContactLaw law;     /* mu, delta, epsilon, kappa, beta */

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The paradox region of any body FMU (p_plus < 0, forward slip) over its configuration, from the FMU's
-own outputs: p_plus over a grid of the states it depends on (its ModelStructure dependencies, or the
+own outputs: p_plus over a grid of the start values it depends on (its ModelStructure dependencies, or the
 axes the user names), the curve p_plus = 0, and, in two dimensions, the configurations with the contact
 point on the floor (y = 0), where an IWC can start. Writes the PNG and a JSON of the grid."""
 import json
@@ -12,11 +12,12 @@ from ..fmu.body import Body, BodyError
 
 
 def configuration_axes(body: Body):
-    """The states p_plus depends on (the FMU's ModelStructure): the body's configuration coordinates."""
+    """The start values p_plus depends on at the start (the FMU's ModelStructure, InitialUnknowns): the
+    body's configuration coordinates."""
     md = body.experiment.model_description
-    for out in md.outputs:
+    for out in md.initialUnknowns:
         if out.variable.name == "p_plus" and out.dependencies:
-            return [d.name for d in out.dependencies if d.name in body.states]
+            return [d.name for d in out.dependencies if d.name in body.start_names]
     raise BodyError(f"{body.name} declares no dependencies of p_plus: name the axes (--axes)")
 
 

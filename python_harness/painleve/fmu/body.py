@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables.
 
-A body FMU has continuous states (whatever they are), the contact point's height `y`, slip speed
+A body FMU has start values (its continuous outputs with initial="exact": the coordinates and rates
+a user sets; its states may be others, such as the arm's turns from a reference), the contact point's height `y`, slip speed
 `v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
 stiffness `k` and damping `c`: eps ~ k^-1/2, delta ~ c k^-1/2, as every body's scaling has it),
 and the coefficients of eq Painleve at the current state as outputs (a, b, p_plus, p_minus,
@@ -10,7 +11,7 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
 - `outputs(values)`: any outputs at a state (the instance initialized from those start values);
 - `compliance(values, epsilon, delta)`: the start values that give the body that eps and delta;
 - `floor_start(values, v0)`: a consistent start, the contact point on the floor (y = 0) with
-  velocity (v0, w0), solving for the states the user did not give (and any parameters named) by
+  velocity (v0, w0), solving for the start values the user did not give (and any parameters named) by
   Gauss-Newton on the FMU's own y, v, w (finite-difference Jacobian; for the arm: theta2 and both
   rates from theta1, or both rates and the pivot's height H from theta1 and theta2);
 - `run(case)`: the Outcome of a case of either kind (experiments.case: the rod's Case, a BodyCase);
@@ -60,11 +61,12 @@ class Body:
             self.close()
             raise BodyError(f"{fmu_path}: its Co-Simulation cannot get and set its state, which a run's return "
                             f"is located with")
-        self.states = [d.variable.derivative.name for d in md.derivatives]
+        self.start_names = [v.name for v in md.modelVariables
+                            if v.causality == "output" and v.variability == "continuous" and v.initial == "exact"]
         self.name = md.modelName
         self.fmi_type = fmi_type
-        # What a run reads at the return: the contact point's height and speeds, and every state.
-        self.read = CONTACT + tuple(s for s in self.states if s not in CONTACT)
+        # What a run reads at the return: the contact point's height and speeds, and every start value.
+        self.read = CONTACT + tuple(s for s in self.start_names if s not in CONTACT)
 
     def close(self):
         self.experiment.close()
@@ -118,11 +120,11 @@ class Body:
         return out
 
     def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40, solve=()):
-        """`values` completed with the states it does not give (and the parameters named in `solve`), so
+        """`values` completed with the start values it does not give (and the parameters named in `solve`), so
         that y = 0, v = v0, w = w0 (Gauss-Newton, least squares: unknowns that do not move y, v, w keep
         their guess, the FMU's start otherwise). With nothing to solve for, `values` themselves, checked."""
         self._known(dict.fromkeys(solve))
-        unknown = [s for s in self.states if s not in values] + [p for p in solve if p not in self.states]
+        unknown = [s for s in self.start_names if s not in values] + [p for p in solve if p not in self.start_names]
         target = np.array([0.0, v0, w0])
         tolerance = 1e-12 * (1 + abs(v0) + abs(w0))
         if not unknown:
@@ -130,7 +132,7 @@ class Body:
             r = np.array([out[n] for n in CONTACT]) - target
             if np.any(np.abs(r) > tolerance):
                 raise BodyError(f"{self.name}: the start {values} is not on the floor with v = {v0:g}, w = {w0:g} "
-                                f"(y, v - v0, w - w0 = {r}); leave the states to solve for out")
+                                f"(y, v - v0, w - w0 = {r}); leave the start values to solve for out")
             return dict(values)
         u = np.array([float((guess or {}).get(s, self.defaults([s]).get(s, 0.0))) for s in unknown])
 
@@ -142,10 +144,10 @@ class Body:
         except SimulationError as err:    # a trial state outside the FMU's ranges: no start near the guess
             raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values}: "
                             f"the search left the FMU's ranges ({str(err).split('the FMU stopped: ')[-1]}); "
-                            f"give other states or --guess") from None
+                            f"give other start values or --guess") from None
         if np.any(np.abs(r) > tolerance):
             raise BodyError(f"{self.name}: no state with y = 0, v = {v0:g}, w = {w0:g} found from {values} "
-                            f"(residual y, v - v0, w - w0 = {r}); give other states or --guess")
+                            f"(residual y, v - v0, w - w0 = {r}); give other start values or --guess")
         return dict(values, **dict(zip(unknown, (float(x) for x in u))))
 
     @staticmethod

@@ -67,16 +67,22 @@ class DirectCVode(CVodeSolver):
         super().reset(time)
 
 
+# A run's events and an event's iterations: an IWC has a handful of events and a rod that ends
+# lying on the floor about a hundred; far beyond both, the run is chattering, not moving on.
+MAX_EVENTS = 100_000
+MAX_EVENT_ITERATIONS = 1_000
+
+
 def event_iteration(instance):
     """fmi2NewDiscreteStates until the FMU needs no more; its last fmi2EventInfo
     as fmpy returns it: (needed, terminate, nominals changed, values changed,
-    next event time defined, next event time)."""
+    next event time defined, next event time). Raises RuntimeError if it never settles."""
     info = (True,)
-    while info[0]:
+    for _ in range(MAX_EVENT_ITERATIONS):
         info = instance.newDiscreteStates()
-        if info[1]:
-            break
-    return info
+        if not info[0] or info[1]:
+            return info
+    raise RuntimeError(f"the event iteration did not settle in {MAX_EVENT_ITERATIONS} calls of fmi2NewDiscreteStates")
 
 
 def integrate(instance, model_description, *, relative_tolerance, stop_time, at_event):
@@ -84,13 +90,14 @@ def integrate(instance, model_description, *, relative_tolerance, stop_time, at_
     from t = 0: the initial event iteration, then CVode from event to event until
     at_event(t) is true (after the event's iteration, in continuous-time mode),
     the FMU asks to terminate, or t reaches stop_time. Returns (t, the solver's
-    counters dict(nfev, nsteps)); raises RuntimeError if CVode fails."""
+    counters dict(nfev, nsteps)); raises RuntimeError if CVode fails or the events
+    exceed MAX_EVENTS."""
     me = model_description.modelExchange
     info = event_iteration(instance)
     instance.enterContinuousTimeMode()
     solver = DirectCVode(instance, model_description, relative_tolerance=relative_tolerance,
                          max_step=stop_time / 50)   # fmpy's max step
-    t = 0.0
+    t, events = 0.0, 0
     while not info[1] and t < stop_time:
         t_next = min(stop_time, info[5]) if info[4] else stop_time
         root, _, t = solver.step(t, t_next)
@@ -102,6 +109,10 @@ def integrate(instance, model_description, *, relative_tolerance, stop_time, at_
                 break
         if not (root or step_event or (info[4] and t >= info[5])):
             continue
+        events += 1
+        if events > MAX_EVENTS:
+            raise RuntimeError(f"{MAX_EVENTS} events before t = {t:.17g} without reaching t = {stop_time:g}: "
+                               f"the run chatters at a switching surface")
         instance.enterEventMode()
         info = event_iteration(instance)
         instance.enterContinuousTimeMode()
