@@ -56,7 +56,8 @@ def read_models(fmus=None):
         def start(v):
             return float(v.start) if v.start is not None else 0.0
 
-        states = {d.variable.derivative.name for d in md.derivatives}
+        # the states a start sets (a state the FMU calculates at initialization, the arm's y, is not one)
+        states = {d.variable.derivative.name for d in md.derivatives if d.variable.derivative.initial != "calculated"}
         models[key] = dict(
             path=str(path),
             parameters={v.name: (float(v.min) if v.min is not None else -math.inf,

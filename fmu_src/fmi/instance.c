@@ -191,13 +191,17 @@ Status instance_get(Instance *in, const char *call, unsigned int vr, VariableTyp
 
 /* When a variable of each kind may be set: parameters are fixed once
  * initialization ends; continuous states may also be set between events
- * (FMI 2.0.4 §3.2.3 condition 5); inputs whenever the master gives them. */
+ * (FMI 2.0.4 §3.2.3 condition 5), and a derived state only there; inputs
+ * whenever the master gives them. */
 static InstanceState settable_when(VariableKind kind, const char **when)
 {
     switch (kind) {
     case KIND_STATE:
         *when = "before initialization ends or in Continuous-Time Mode";
         return BEFORE_INIT_ENDS | ContinuousTimeMode;
+    case KIND_DERIVED_STATE:
+        *when = "in Continuous-Time Mode (the model calculates it while initializing)";
+        return ContinuousTimeMode;
     case KIND_INPUT:
         *when = "before initialization ends, in Event, Continuous-Time or Step Mode";
         return BEFORE_INIT_ENDS | EventMode | ContinuousTimeMode | StepMode;

@@ -48,8 +48,8 @@ typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } VariableType;
  * CALCULATED_PARAMETER: derived from parameters while initializing, fixed
  * after (causality calculatedParameter: an unknown of Initialization Mode only);
  * DERIVED_STATE: a continuous state the model calculates while initializing
- * (initial="calculated": no fmi2SetReal sets it, fmi2SetContinuousStates does; a
- * model with one provides no partial derivatives, MODEL_NO_PARTIALS). */
+ * (initial="calculated": set as a state is in Continuous-Time Mode, never before;
+ * a model with one provides no partial derivatives, MODEL_NO_PARTIALS). */
 typedef enum {
     KIND_PARAMETER, KIND_STATE, KIND_CALCULATED, KIND_DISCRETE, KIND_INPUT, KIND_CALCULATED_PARAMETER,
     KIND_DERIVED_STATE

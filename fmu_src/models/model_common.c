@@ -39,7 +39,7 @@ const VariableInfo *model_variable(unsigned int vr)
 
 bool model_settable(const VariableInfo *info)
 {
-    return info->kind == KIND_PARAMETER || info->kind == KIND_STATE || info->kind == KIND_INPUT;
+    return info->kind == KIND_PARAMETER || MODEL_KIND_IS_STATE(info->kind) || info->kind == KIND_INPUT;
 }
 
 /* Only settable kinds are written: the others' fields may be int or bool. */
@@ -49,7 +49,7 @@ bool model_settable(const VariableInfo *info)
 #define ASSIGN_CALCULATED(lvalue, value) (void)(value)
 #define ASSIGN_DISCRETE ASSIGN_CALCULATED
 #define ASSIGN_CALCULATED_PARAMETER ASSIGN_CALCULATED
-#define ASSIGN_DERIVED_STATE ASSIGN_CALCULATED
+#define ASSIGN_DERIVED_STATE ASSIGN_PARAMETER
 #define MODEL_ASSIGN(id, name, type, kind, field, min, max) case VR_##id: ASSIGN_##kind(m->field, value); break;
 #define MODEL_READ(id, name, type, kind, field, min, max) case VR_##id: return (double)m->field;
 

@@ -4,6 +4,8 @@ and 3.0), its energy is conserved in flight and dissipated in contact, and its c
 a, b, p_plus, p_minus, q_plus, q_minus, S_w are those of an independent computation from the
 links' centres of mass (tests/helpers/two_link_arm.py; the Delassus matrix W M^-1 W^T of
 tests/helpers/delassus.py) at random configurations, in the documented scaling."""
+import ctypes
+
 import fmpy
 import numpy as np
 import pytest
@@ -101,3 +103,32 @@ def test_the_default_start_is_in_the_paradox_region_on_the_floor(instance):
     assert got["b"] < 0 < got["a"]   # Theorem 1's quadrant
     assert abs(got["y"]) < 1e-12 and got["v"] == pytest.approx(0.2, rel=1e-3) and abs(got["w"]) < 1e-4
     assert got["epsilon"] == pytest.approx(1e-3, rel=1e-4) and got["delta"] == pytest.approx(1.0, rel=1e-4)
+
+
+@pytest.mark.parametrize("k", range(5))
+def test_y_is_a_state_calculated_from_the_angles_that_no_one_sets(instance, k):
+    # y starts at the tip's height H + l1 sin theta1 + l2 sin theta2 (the arm of helpers.two_link_arm),
+    # is the fifth continuous state, its derivative is w, and fmi2SetReal refuses it with its name.
+    fmu, vr = instance
+    p = dict(l1=RNG.uniform(0.1, 1), l2=RNG.uniform(0.1, 1), H=RNG.uniform(0.1, 2))
+    q, u = RNG.uniform(-np.pi, 0, 2), RNG.uniform(-4, 4, 2)
+    got = read(instance, dict(p, theta1=q[0], theta2=q[1], omega1=u[0], omega2=u[1]), ("y", "w", "der(y)"))
+    tip_y = arm.tip(q, p)[1]
+    tip_w = p["l1"] * np.cos(q[0]) * u[0] + p["l2"] * np.cos(q[1]) * u[1]   # d/dt of the tip's height
+    assert got["y"] == pytest.approx(tip_y, abs=1e-14 * (p["H"] + 2))
+    assert got["der(y)"] == got["w"] == pytest.approx(tip_w, abs=1e-13 * (1 + abs(tip_w)))
+    x = np.zeros(5)
+    fmu.getContinuousStates(x.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), 5)
+    assert x[4] == got["y"]
+    fmu.reset()
+    with pytest.raises(fmpy.fmi1.FMICallException):
+        fmu.setReal([vr["y"]], [0.1])
+
+
+def test_a_tip_placed_on_the_floor_starts_exactly_on_it(instance):
+    # H from the angles in double precision leaves the tip an ulp-sized bit off the floor;
+    # the FMU reads it as on the floor: y = 0 exactly.
+    for q in RNG.uniform(-np.pi, 0, (20, 2)):
+        p = dict(l1=0.3, l2=0.2)
+        p["H"] = -(p["l1"] * np.sin(q[0]) + p["l2"] * np.sin(q[1]))
+        assert read(instance, dict(p, theta1=q[0], theta2=q[1]), ("y",))["y"] == 0.0

@@ -78,6 +78,7 @@ static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX]
     for (int i = 0; i < ARM_NX; ++i) dx[i] = unit[i] / T * dxs[i];
     dx[ARM_THETA1] = x[ARM_OMEGA1];   /* exactly the rates */
     dx[ARM_THETA2] = x[ARM_OMEGA2];
+    dx[ARM_Y] = sqrt(m->g * (m->l1 + m->l2)) * dxs[ARM_Y];   /* L/T as the output w has it: der(y) is w */
 }
 
 /* ------------------------------------------------------------ variables */
