@@ -11,7 +11,7 @@ import pandas as pd
 
 from painleve.experiments.outcome import SimulationError
 from painleve.fmu.experiment import Experiment
-from painleve.sweep.run import FmuBlob, _close_experiments, predictions, run_batch
+from painleve.sweep.run import FmuBlob, _close_bodies, predictions, run_batch
 from painleve.sweep.spec import SweepSpec
 from painleve.sweep.store import as_frame
 from painleve.theory import analytic as an
@@ -46,7 +46,7 @@ def test_a_sweeps_rows_are_the_generic_harness_path_bit_for_bit(fmu_path):
         swept = pd.concat([run_batch(SPEC, chunk, FmuBlob.read(fmu_path), "CoSimulation")
                            for chunk in np.array_split(ids, 3)], ignore_index=True)
     finally:
-        _close_experiments()        # this process's instance (a sweep's goes at exit)
+        _close_bodies()        # this process's instance (a sweep's goes at exit)
     generic = generic_rows(fmu_path, ids)
     assert set(swept["status"]) == {"ok", "outside", "failed"}
     pd.testing.assert_frame_equal(swept, generic, check_exact=True)

@@ -16,7 +16,7 @@ import itertools
 import math
 
 from ..experiments.case import BodyCase
-from ..experiments.outcome import NoReturn, SimulationError, w_error
+from ..experiments.outcome import NoReturn, SimulationError
 from ..fmu.body import Body, BodyError
 from ..fmu.body_case import predict
 from ..theory import general
@@ -106,7 +106,7 @@ def _row(body, case_id, point, case):
                predicts_iwc=predicts_iwc(co, case.w0 / case.epsilon, predicted.w1_star, predicted.hypotheses),
                status="outside" if predicted.hypotheses else "ok", message=predicted.hypotheses)
     try:
-        outcome = body.iwc(predicted.start, case=case, doublings=DOUBLINGS)
+        outcome = body.run(case, predicted, doublings=DOUBLINGS)
     except NoReturn as err:     # no lift-off back to the floor: not an IWC
         row.update(status="no return", message=str(err), iwc=False)
         return row
@@ -114,6 +114,6 @@ def _row(body, case_id, point, case):
         row.update(status="failed", message=str(err))
         return row
     row.update(iwc=outcome.iwc, w=outcome.w, v=outcome.v, t_return=outcome.t_return, events=outcome.events,
-               w_error=w_error(outcome.w, predicted.start_v0, predicted.e),
+               w_error=outcome.w_error,
                **{k: getattr(outcome, k) for k in PHASES})
     return row
