@@ -119,6 +119,17 @@ class Body:
                             f"delta {got['delta']:.6g}, not {epsilon:g}, {delta:g}")
         return out
 
+    def start_names(self, given, solve=()):
+        """The names, in order, of the start values a case that gives `given` (names) and solves for `solve`
+        starts from (body_case.predict's start): those given, the compliance's (compliance: epsilon and
+        delta, or k and c), then what floor_start solves for (the states not given, the parameters in
+        `solve`)."""
+        names = dict.fromkeys(given)
+        names.update(dict.fromkeys(("epsilon", "delta") if self.variables["epsilon"].causality == "parameter"
+                                   else (STIFFNESS, DAMPING)))
+        names.update(dict.fromkeys([s for s in self.states if s not in names] + [p for p in solve if p not in self.states]))
+        return list(names)
+
     def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40, solve=()):
         """`values` completed with the states it does not give (and the parameters named in `solve`), so
         that y = 0, v = v0, w = w0 (Gauss-Newton, least squares: unknowns that do not move y, v, w keep

@@ -31,6 +31,7 @@ from ..fmu.body import Body
 from ..theory import analytic as an
 from ..theory.predict_many import predict_many
 from . import plan
+from .body import BodySweep
 from .store import ResultStore, as_frame
 
 
@@ -126,10 +127,13 @@ def _row(case_id, status, message, c, p, o):
 
 
 def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
-    """A batch of cases, on whichever process runs it: a typed DataFrame of rows. The predictions are
-    the batch's over arrays (predict_many), handed to each case's run and row."""
+    """A batch of cases, on whichever process runs it: a typed DataFrame of rows. The rod's sweep
+    (a SweepSpec): the predictions are the batch's over arrays (predict_many), handed to each case's
+    run and row; a body's (sweep.body.BodySweep): its rows (BodySweep.frame)."""
     with _IN_USE:
         body = body_for(blob, fmi_type, tmp_dir)
+        if isinstance(spec, BodySweep):
+            return spec.frame(body, ids)
         cases = spec.cases(ids)
         return as_frame([case_row(body, case, i, p)
                          for i, case, p in zip(np.asarray(ids).tolist(), cases, predict_many(cases))])
