@@ -14,7 +14,6 @@ phases), and the start solved (start_NAME): over the configurations, the paradox
 A case runs whenever a start on the floor is found, inside the theorems' hypotheses ("ok") or not
 ("outside": simulated all the same, for the map); a run that is not back on the floor within
 2^DOUBLINGS eps of its own time is "no return"; no start found, or the FMU stopping, is "failed"."""
-import itertools
 import math
 from dataclasses import dataclass
 
@@ -46,15 +45,9 @@ def axes_of(given, case_texts, *, random=False):
 
 def points(axes, samples=0, seed=0):
     """(id, {axis: value}) of every grid point, row-major in the axes' order, or of `samples` random draws
-    (draw id: uniform(seed, [id]), so a draw does not depend on how many are made)."""
-    names = [a.name for a in axes]
-    if not samples:
-        yield from enumerate(dict(zip(names, values)) for values in itertools.product(*(a.grid().tolist()
-                                                                                         for a in axes)))
-        return
-    u = uniform(seed, range(samples), len(axes))
-    for i in range(samples):
-        yield i, {a.name: float(a.sample(u[i, k])) for k, a in enumerate(axes)}
+    (draw id: uniform(seed, [id]), so a draw does not depend on how many are made): BodySweep.points."""
+    spec = BodySweep(axes=tuple(axes), samples=samples, seed=seed)
+    return spec.points(range(spec.total))
 
 
 def case_of(point, guess=(), solve=()):
@@ -94,7 +87,8 @@ class BodySweep:
                 "solve": list(self.solve), "total": self.total}
 
     def points(self, ids):
-        """(id, {axis: value}) of the cases `ids`: those points() gives them, whatever the chunk."""
+        """(id, {axis: value}) of the cases `ids`, whatever the chunk: the grid's points row-major in the
+        axes' order, or the draws (draw id: uniform(seed, [id]))."""
         ids = np.asarray(ids, dtype=np.int64).tolist()
         if not self.samples:
             grids = [a.grid().tolist() for a in self.axes]
