@@ -23,6 +23,12 @@ and many of them, the paradox map from simulation beside the theory's p_plus < 0
                           "mu": "0.3:2"}, {"epsilon": "1e-5", "v0": "0.2"}, random=True), samples=20, seed=1,
                           solve=("H",))
 
+or, written as they finish and resumable, here or on dask (sweep.run, as the rod's sweep runs):
+
+    from painleve import BodySweep, run_sweep
+    run_sweep(BodySweep(axes=sweep_axes({"theta1": "-1.2:-0.8:9"}, {"epsilon": "1e-5", "v0": "0.2"}),
+                        guess=(("theta2", -1.3),)), "build/TwoLinkArm.fmu", "out/arm.csv")
+
 The names below are the package's public face; each is imported on first use, so that
 `import painleve` (and the theory alone) loads no fmpy. The layers behind them:
 theory < experiments < fmu < coupling, validation, sweep < figures < cli (docs/architecture.md).
@@ -47,6 +53,7 @@ _PUBLIC = {
     "validate_fmu": ("validation.body", "validate_fmu"),
     "SweepSpec": ("sweep.spec", "SweepSpec"), "run_sweep": ("sweep.run", "run_sweep"),
     "run_body_sweep": ("sweep.body", "run_body_sweep"), "sweep_axes": ("sweep.body", "axes_of"),
+    "BodySweep": ("sweep.body", "BodySweep"),
     "make_figures": ("figures.paper", "make_figures"), "paradox_figure": ("figures.body", "paradox_figure"),
     "sweep_map_figure": ("figures.body", "sweep_map_figure"),
 }
