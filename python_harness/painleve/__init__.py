@@ -12,7 +12,7 @@ start values plus the configuration they came from (IWCCase): a BodyCase, or the
     from painleve import Body, BodyCase, run_body
     with Body("build/TwoLinkArm.fmu", fmi_type="CoSimulation") as body:
         predicted, outcome = run_body(body, BodyCase(given=(), epsilon=1e-4))   # its own start, on the floor
-    outcome.w / predicted.start_v0, predicted.e     # an Outcome as ex.run's; e from the FMU's coefficients
+    outcome.w_error         # w/v0 - e, e from the FMU's coefficients (predicted.e); outcome.as_row(): a flat dict
     with Body("build/PainleveRod.fmu") as body:      # the rod's Case takes the same path
         predicted, outcome = run_body(body, Case(theta0=1.0, phi0=0.5, epsilon=1e-5))
 
@@ -22,6 +22,12 @@ and many of them, the paradox map from simulation beside the theory's p_plus < 0
     rows = run_body_sweep("build/TwoLinkArm.fmu", sweep_axes({"theta1": "-1.6:-0.5", "theta2": "-1.6:-0.5",
                           "mu": "0.3:2"}, {"epsilon": "1e-5", "v0": "0.2"}, random=True), samples=20, seed=1,
                           solve=("H",))
+
+or, written as they finish and resumable, here or on dask (sweep.run, as the rod's sweep runs):
+
+    from painleve import BodySweep, run_sweep
+    run_sweep(BodySweep(axes=sweep_axes({"theta1": "-1.2:-0.8:9"}, {"epsilon": "1e-5", "v0": "0.2"}),
+                        guess=(("theta2", -1.3),)), "build/TwoLinkArm.fmu", "out/arm.csv")
 
 The names below are the package's public face; each is imported on first use, so that
 `import painleve` (and the theory alone) loads no fmpy. The layers behind them:
@@ -44,8 +50,10 @@ _PUBLIC = {
     "run_body": ("fmu.body_case", "run_body"),
     "si": ("coupling.si", None), "SIExperiment": ("coupling.si_experiment", "SIExperiment"),
     "validate": ("validation.suite", "validate"), "validate_body": ("validation.body", "validate_body"),
+    "validate_fmu": ("validation.body", "validate_fmu"),
     "SweepSpec": ("sweep.spec", "SweepSpec"), "run_sweep": ("sweep.run", "run_sweep"),
     "run_body_sweep": ("sweep.body", "run_body_sweep"), "sweep_axes": ("sweep.body", "axes_of"),
+    "BodySweep": ("sweep.body", "BodySweep"),
     "make_figures": ("figures.paper", "make_figures"), "paradox_figure": ("figures.body", "paradox_figure"),
     "sweep_map_figure": ("figures.body", "sweep_map_figure"),
 }

@@ -215,8 +215,9 @@ def test_the_figure_of_e_against_the_law_puts_the_fmu_on_the_rigid_limit(fmu_pat
     # painleve figures' eLaw: w/v0 of the FMU at eps = 1e-6 on the rigid limit's curve, which leaves
     # the linear e as kappa (up) or beta (down) grows.
     from painleve.figures.paper import elaw_data
-    with Experiment(fmu_path) as experiment:
-        d = elaw_data(experiment)
+    from painleve.fmu.body import Body
+    with Body(fmu_path) as body:        # the runner make_figures hands it
+        d = elaw_data(body)
     for q in d["points"]:
         law = {q["parameter"]: q["value"]}
         e = float(rl.e(q["delta"], d["params"]["theta0"], alpha=3.0, mu=3.0, **law))

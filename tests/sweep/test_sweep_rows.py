@@ -8,10 +8,11 @@ from dataclasses import asdict
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from painleve.experiments.outcome import SimulationError
 from painleve.fmu.experiment import Experiment
-from painleve.sweep.run import FmuBlob, _close_experiments, predictions, run_batch
+from painleve.sweep.run import FmuBlob, _close_bodies, predictions, run_batch
 from painleve.sweep.spec import SweepSpec
 from painleve.sweep.store import as_frame
 from painleve.theory import analytic as an
@@ -46,7 +47,7 @@ def test_a_sweeps_rows_are_the_generic_harness_path_bit_for_bit(fmu_path):
         swept = pd.concat([run_batch(SPEC, chunk, FmuBlob.read(fmu_path), "CoSimulation")
                            for chunk in np.array_split(ids, 3)], ignore_index=True)
     finally:
-        _close_experiments()        # this process's instance (a sweep's goes at exit)
+        _close_bodies()        # this process's instance (a sweep's goes at exit)
     generic = generic_rows(fmu_path, ids)
     assert set(swept["status"]) == {"ok", "outside", "failed"}
     pd.testing.assert_frame_equal(swept, generic, check_exact=True)
@@ -56,3 +57,33 @@ def test_a_sweeps_rows_are_the_generic_harness_path_bit_for_bit(fmu_path):
     fine = swept[(swept["status"] == "ok") & (swept["theorem"] == 1) & (swept["epsilon"] < 1e-4)]
     # Theorem 1: w/v0 - e = O(eps ln 1/eps), below 1.2e-3 here
     assert len(fine) >= 10 and np.all(np.abs(fine["w_error"]) < 2e-3)
+
+
+def test_a_sweeps_cases_run_through_the_body_runner_and_land_on_theorem_1(fmu_path, monkeypatch):
+    """The rod's sweep has no runner of its own: every case that runs is fmu.body.Body.run's (the runner
+    of every body FMU), through either interface; and its rows carry the physics: e is Theorem 1's,
+    by the exact integration of the sticking system, and w/v0 meets it to O(eps ln 1/eps)."""
+    from painleve.fmu.body import Body
+    spec = SweepSpec.from_texts({"theta0": "0.3:1.2:6", "delta": "0,1", "epsilon": "1e-5"})
+    ran = []
+    run = Body.run
+
+    def recorded(body, case, *args, **kwargs):
+        ran.append((body.fmi_type, case))
+        return run(body, case, *args, **kwargs)
+    monkeypatch.setattr(Body, "run", recorded)
+    for fmi_type in ("ModelExchange", "CoSimulation"):
+        ran.clear()
+        try:
+            df = run_batch(spec, np.arange(spec.total), FmuBlob.read(fmu_path), fmi_type)
+        finally:
+            _close_bodies()
+        cases = spec.cases(np.arange(spec.total))
+        inside = [c for c, status in zip(cases, df["status"]) if status != "outside"]
+        assert ran == [(fmi_type, c) for c in inside] and 0 < len(inside) < spec.total   # theta0 = 0.3: outside
+        ok = df[df["status"] == "ok"]
+        assert len(ok) == len(inside)
+        for row in ok.itertuples():
+            assert row.e == pytest.approx(an.e_integrated(row.delta, row.theta0), rel=1e-7)
+            assert abs(row.w / row.v0 - row.e) < 2e-3      # O(eps ln 1/eps) at eps = 1e-5, as above
+            assert row.w_error == row.w / row.v0 - row.e

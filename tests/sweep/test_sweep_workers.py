@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """A sweep's worker frees its FMU instances only when no batch is using them: the driver's
-clean-up (client.run(_close_experiments)) runs in another thread of the worker than the batch,
+clean-up (client.run(_close_bodies)) runs in another thread of the worker than the batch,
 and an instance freed while CVode integrates in it corrupts the heap (an interrupted sweep's
 worker printed glibc's "free(): corrupted unsorted chunks")."""
 import threading
@@ -18,7 +18,7 @@ class Recorder:
 
 def test_clean_up_leaves_an_instance_a_running_batch_uses_and_frees_it_after(monkeypatch):
     experiment = Recorder()
-    monkeypatch.setattr(sweep, "_EXPERIMENTS", {("digest", "ModelExchange"): experiment})
+    monkeypatch.setattr(sweep, "_BODIES", {("digest", "ModelExchange"): experiment})
     running, finish = threading.Event(), threading.Event()
 
     def batch():                         # what run_batch holds while it integrates
@@ -29,9 +29,9 @@ def test_clean_up_leaves_an_instance_a_running_batch_uses_and_frees_it_after(mon
     worker = threading.Thread(target=batch)
     worker.start()
     running.wait(10)
-    sweep._close_experiments()           # the driver's clean-up, mid-batch
-    assert not experiment.closed and sweep._EXPERIMENTS
+    sweep._close_bodies()           # the driver's clean-up, mid-batch
+    assert not experiment.closed and sweep._BODIES
     finish.set()
     worker.join(10)
-    sweep._close_experiments()           # the same once the batch is done
-    assert experiment.closed and not sweep._EXPERIMENTS
+    sweep._close_bodies()           # the same once the batch is done
+    assert experiment.closed and not sweep._BODIES

@@ -83,11 +83,10 @@ def iwc_case(args):
 
 def print_iwc(args, fmu, name, case, predicted, outcome):
     """`painleve iwc`'s table or JSON for a BodyCase: the start, the theory there, the simulation."""
-    from ..experiments.outcome import w_error
     interface = "Model Exchange" if args.interface == "ME" else "Co-Simulation"
     co = predicted.coefficients
     v0 = predicted.start_v0
-    error = w_error(outcome.w, v0, predicted.e)
+    error = outcome.w_error
     phases = {k: getattr(outcome, k) for k in ("compression", "stick", "lift_off", "flight_back")}
     if args.json:
         print(to_json({"fmu": fmu, "model": name, "interface": args.interface, "start": predicted.start,
@@ -121,12 +120,10 @@ def print_iwc(args, fmu, name, case, predicted, outcome):
     return 0
 
 
-def validate_checks(args, fmu):
-    """The checks of `painleve validate` on a body FMU, through the interfaces --interface asks for."""
-    from ..validation.body import validate_body
+def validate_case(args):
+    """`painleve validate`'s BodyCase from --set, --guess, --v0, --delta (the rod's options refused)."""
     refuse_rod_options(args, "validate", also=(("sample", 24),))
-    interfaces = ("ME", "CS") if args.interface == "all" else (args.interface,)
-    return validate_body(fmu, _case(args, 1e-4), interfaces=interfaces)
+    return _case(args, 1e-4)
 
 
 def run_figures(args, fmu):

@@ -60,7 +60,7 @@ def run(args):
                              + ", ".join(f"{k}={v:.6g}" for k, v in predicted.start.items())
                              + "; choose a configuration inside the paradox region (painleve figures --fmu "
                                "shows it) or another --v0")
-        outcome = b.run(case, predicted.start)
+        outcome = b.run(case, predicted)
         name = b.name
     if generic:
         return body.print_iwc(args, fmu, name, case, predicted, outcome)

@@ -52,7 +52,8 @@ def add_parser(sub):
     fmu_option(sw)
     interface_option(sw)
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
-    b = sw.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): a grid or --random draws, run in this process")
+    b = sw.add_argument_group("any body FMU (TwoLinkArm.fmu, ...): a grid or --random draws, run and written as the "
+                              "rod's are (here or on dask, resumable)")
     b.add_argument("--set", action="append", default=[], metavar="NAME=SPEC",
                    help="a start value or parameter of the body and its values (a SPEC as below), e.g. "
                         "theta1=-1.2:-0.8:9 or mu=1,2 (with --random: theta1=-1.6:-0.4); with --eps, --delta, "
@@ -69,28 +70,25 @@ def add_parser(sub):
                    "axes, the simulation's IWC beside the theory's p_plus < 0 (figures.body.sweep_map_figure)")
 
 def run(args):
+    """One path for every body FMU: the sweep's cases (the rod's SweepSpec from the rod's options, for an FMU
+    of the rod's model without --set; a body's sweep.body.BodySweep from --set otherwise), run by sweep.run
+    (every case through fmu.body.Body, here or on dask, written as chunks finish, resumable); then the
+    summary, a body's with its paradox map."""
     from ..fmu.experiment import FMI_TYPES
-    from . import body
-    if (args.set or args.guess or args.fmu) and body.is_body(fmu_file(args.fmu, probe=False, allow_body=True), args):
-        return run_body(args, fmu_file(args.fmu, allow_body=True))
-    body_only = [f"--{k}" for k in ("solve", "map") if getattr(args, k)]
-    if body_only:
-        raise UsageError(f"painleve sweep: {body_only[0]} is an option of a body's sweep (--set NAME=SPEC); the "
-                         f"rod's own sweep solves nothing and draws no paradox map")
     from ..sweep.run import run_sweep
-    from ..sweep.spec import PARAMS, SpecError, SweepSpec
-    from ..sweep.store import ResultStore, StoreError
-    texts = {p: getattr(args, p) for p in PARAMS if getattr(args, p) is not None}
-    try:
-        spec = SweepSpec.from_texts(texts, samples=args.random, seed=args.seed)
-    except SpecError as err:
-        raise UsageError(f"painleve sweep: {err}") from None
+    from ..sweep.store import COLUMNS, ResultStore, StoreError
+    from . import body
+    generic = bool(args.set or args.guess or args.fmu) and \
+        body.is_body(fmu_file(args.fmu, probe=False, allow_body=True), args)
+    spec, map_axes = body_spec(args) if generic else (rod_spec(args), None)
     try:
         ResultStore(args.out)       # the output's kind, from its name
     except StoreError as err:
         raise UsageError(f"painleve sweep: {err}") from None
     output_path(args.out, "painleve sweep: --out", directory=pathlib.Path(args.out).suffix.lower() in (".parquet", ".pq"))
-    fmu = fmu_file(args.fmu)
+    if args.map:
+        output_path(args.map, "painleve sweep: --map")
+    fmu = fmu_file(args.fmu, allow_body=generic)
     # Ctrl-C, and kill's SIGTERM, stop the sweep cleanly: main (interrupt.caught) makes them KeyboardInterrupt.
     try:
         result = run_sweep(spec, fmu, args.out, fmi_type=FMI_TYPES[args.interface], scheduler=args.scheduler,
@@ -99,7 +97,7 @@ def run(args):
     except StoreError as err:
         raise UsageError(f"painleve sweep: {err}") from None
     except KeyboardInterrupt:
-        done = len(ResultStore(args.out).read()) if pathlib.Path(args.out).exists() else 0
+        done = len(ResultStore(args.out).read(None)) if pathlib.Path(args.out).exists() else 0
         raise Interrupted(f"painleve sweep: interrupted; {done} of {spec.total} cases are saved in {args.out}: "
                           f"run the same command to resume") from None
     except OSError as err:
@@ -108,7 +106,10 @@ def run(args):
                            f"({one_line(err)}); check the address, or leave out --scheduler for a local "
                            f"cluster") from None
         raise
-    df = ResultStore(args.out).read()
+    if generic:
+        from ..sweep.body import typed
+        return body_summary(args, fmu, typed(ResultStore(args.out).read(None)), map_axes)
+    df = ResultStore(args.out).read(COLUMNS)
     counts = df["status"].value_counts().to_dict()
     iwc = int(df["iwc"].fillna(False).sum())
     rate = result.ran / result.seconds if result.seconds > 0 else float("nan")
@@ -118,24 +119,33 @@ def run(args):
     return 0
 
 
+def rod_spec(args):
+    """The rod's SweepSpec from its options (a body's refused: the rod's cases solve nothing)."""
+    from ..sweep.spec import PARAMS, SpecError, SweepSpec
+    body_only = [f"--{k}" for k in ("solve", "map") if getattr(args, k)]
+    if body_only:
+        raise UsageError(f"painleve sweep: {body_only[0]} is an option of a body's sweep (--set NAME=SPEC); the "
+                         f"rod's own sweep solves nothing and draws no paradox map")
+    texts = {p: getattr(args, p) for p in PARAMS if getattr(args, p) is not None}
+    try:
+        return SweepSpec.from_texts(texts, samples=args.random, seed=args.seed)
+    except SpecError as err:
+        raise UsageError(f"painleve sweep: {err}") from None
+
+
 ROD_ONLY = ("theta0", "phi0", "alpha", "mu", "kappa", "beta")
 
 
-def run_body(args, fmu):
-    """The sweep of a body FMU (sweep.body): a grid or --random draws in this process, the rows in one .csv
-    or .parquet file, the paradox map in --map."""
-    import pandas as pd
-    from ..fmu.experiment import FMI_TYPES
-    from ..sweep.body import axes_of, run_body_sweep
+def body_spec(args):
+    """(sweep.body.BodySweep, the --map's two axes or None) from --set, --guess, --solve, --eps, --delta,
+    --v0, --w10, --random, --seed (the rod's parameters refused)."""
+    from ..sweep.body import BodySweep, axes_of
     from ..sweep.spec import SpecError
     from .body import assignment
     given = [k for k in ROD_ONLY if getattr(args, k) is not None]
-    given += [f"{k} {getattr(args, k)}" for k, default in (("scheduler", None), ("workers", None), ("batch", None))
-              if getattr(args, k) != default]
     if given:
-        name = given[0].split()[0]
-        raise UsageError(f"painleve sweep: --{name} is an option of the rod's sweep; a body's sweep runs in this "
-                         f"process over --set NAME=SPEC, --eps, --delta, --v0, --w10")
+        raise UsageError(f"painleve sweep: --{given[0]} is an option of the rod's sweep; a body's sweep runs over "
+                         f"--set NAME=SPEC, --eps, --delta, --v0, --w10")
     texts = {}
     for item in args.set:
         name, sep, text = item.partition("=")
@@ -147,21 +157,17 @@ def run_body(args, fmu):
         axes = axes_of(texts, case_texts, random=args.random > 0)
     except SpecError as err:
         raise UsageError(f"painleve sweep: {err}") from None
-    suffix = pathlib.Path(args.out).suffix.lower()
-    if suffix not in (".csv", ".parquet", ".pq"):
-        raise UsageError(f"painleve sweep: --out {args.out}: name the results file with .csv or .parquet")
-    output_path(args.out, "painleve sweep: --out")
-    if args.map:
-        if len([a for a in axes if a.name in texts]) < 2:
-            raise UsageError("painleve sweep: --map draws the cases over the first two --set axes; give two")
-        output_path(args.map, "painleve sweep: --map")
-    rows = run_body_sweep(fmu, axes, fmi_type=FMI_TYPES[args.interface], guess=tuple(assignment(g) for g in args.guess),
-                          solve=tuple(s.strip() for s in args.solve), samples=args.random, seed=args.seed)
-    df = pd.DataFrame(rows)
-    if suffix == ".csv":
-        df.to_csv(args.out, index=False)
-    else:
-        df.to_parquet(args.out, index=False)
+    map_axes = [a.name for a in axes if a.name in texts][:2]
+    if args.map and len(map_axes) < 2:
+        raise UsageError("painleve sweep: --map draws the cases over the first two --set axes; give two")
+    spec = BodySweep(axes=axes, samples=args.random, seed=args.seed, guess=tuple(assignment(g) for g in args.guess),
+                     solve=tuple(s.strip() for s in args.solve))
+    return spec, map_axes
+
+
+def body_summary(args, fmu, df, map_axes):
+    """A body's sweep's summary line (its statuses, the paradox map from simulation beside p_plus < 0, the
+    theory's predictions met), and the map in --map."""
     counts = df["status"].value_counts().to_dict()
     ran = df[df["iwc"].notna()]
     paradox = ran["p_plus"] < 0
@@ -174,7 +180,7 @@ def run_body(args, fmu):
           f"the theory's prediction met in {agree} of {len(told)}")
     if args.map:
         from ..figures.body import sweep_map_figure
-        print(sweep_map_figure(df, [a.name for a in axes if a.name in texts][:2], args.map, title=pathlib.Path(fmu).name))
+        print(sweep_map_figure(df, map_axes, args.map, title=pathlib.Path(fmu).name))
     return 0
 
 

@@ -39,7 +39,7 @@ def add_parser(sub):
 def run(args):
     from ..sweep.run import FmuBlob
     from ..validation import report
-    from ..validation.suite import validate
+    from ..validation.body import validate_fmu
     if args.fmu and args.fmu_option:
         raise UsageError("painleve validate: give the FMU once (positional or --fmu)")
     args.fmu = args.fmu or args.fmu_option
@@ -53,11 +53,10 @@ def run(args):
     if args.report:
         output_path(args.report, "painleve validate: --report")
     interfaces = None if args.interface == "all" else [args.interface]
+    case = body.validate_case(args) if generic else None       # None: the rod's own cases
     start = time.monotonic()
-    if generic:
-        checks = body.validate_checks(args, fmu)
-    else:
-        checks = validate(fmu, interfaces=interfaces, sample=args.sample, law=dict(kappa=args.kappa, beta=args.beta))
+    checks = validate_fmu(fmu, case, interfaces=interfaces, sample=args.sample,
+                          law=dict(kappa=args.kappa, beta=args.beta))
     seconds = time.monotonic() - start
     digest = FmuBlob.read(fmu).digest
     interrupt.check()           # nothing written after a Ctrl-C

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ..theory import analytic as an
+from .case import Case
 
 SLIP_FORWARD, STICK, SLIP_BACKWARD = 1, 0, -1     # the FMU's `mode`
 STATE_AT_RETURN = ("v", "y", "w", "theta", "phi")    # what a run of the rod reads at the return to the floor
@@ -55,7 +56,10 @@ def w_error(w, v0, e):
 class Outcome:
     """A run's return to the floor: its case, whether it stuck (`iwc`), the time and the state there
     (`state`: every state and output the run read, by name; `o.w`, `o.theta`, ... read it), its phase
-    durations, its events, and what the run cost. The `*_error` properties are the rod's (a Case)."""
+    durations, its events, and what the run cost. `w_error` and `as_row` serve any case: the rod's
+    Case from its closed forms (analytic.predict), any other from `prediction`, what the theory
+    predicts from the FMU's coefficients at its start (fmu.body_case.predict, which run_body attaches);
+    `phi_error` and `theta_error` are the rod's alone."""
     case: object            # what was run: a Case (the rod), or a body's case
     iwc: bool               # the contact point stuck before lifting off
     t_return: float
@@ -66,6 +70,9 @@ class Outcome:
     flight_back: float = math.nan
     events: int = -1        # the FMU's events up to the return (-1: not seen)
     solver_stats: dict = field(default_factory=dict, compare=False)   # e.g. nfev, nsteps of the run
+    # A body case's prediction (start_v0, e, coefficients, ...: fmu.body_case.BodyPrediction); None for the rod's
+    # Case, whose closed forms are its own, and for a run nothing predicted.
+    prediction: object = field(default=None, compare=False, repr=False)
 
     def __getattr__(self, name):
         """o.NAME: the state at the return's NAME (o.w, o.v, o.theta, o.theta1, ...)."""
@@ -74,10 +81,21 @@ class Outcome:
             return state[name]
         raise AttributeError(f"{type(self).__name__} has no field and its state no variable {name!r}")
 
+    def _v0_and_e(self):
+        """(v0, e) of the case: the rod's Case's own v0 and closed-form e (analytic.predict, whatever else
+        is attached), any other case's from its `prediction` (the slip speed it started with, and the e of
+        theory.general at its start)."""
+        if isinstance(self.case, Case):
+            return self.case.v0, an.predict(self.case).e
+        if self.prediction is None:
+            raise ValueError(f"{self.case}: a body case's e comes from the FMU's coefficients at its start; "
+                             f"run it with fmu.body_case.run_body, which attaches that prediction")
+        return self.prediction.start_v0, self.prediction.e
+
     @property
     def w_error(self):
         """w/v0 - e: o(1) as eps -> 0 (Theorem 1)."""
-        return w_error(self.state["w"], self.case.v0, an.predict(self.case).e)
+        return w_error(self.state["w"], *self._v0_and_e())
 
     @property
     def phi_error(self):
@@ -88,7 +106,10 @@ class Outcome:
         return self.state["theta"] - self.case.theta0
 
     def as_row(self):
-        """The rod's flat dict: the case, the outcome, the predictions and the errors."""
+        """A flat dict: the case, the outcome, the predictions and the errors (the rod's Case: its fields,
+        its closed forms; any other case: its configuration, the theory at its start, see _body_row)."""
+        if not isinstance(self.case, Case):
+            return self._body_row()
         predicted = an.predict(self.case)
         s = self.state
         # shallow: asdict's deep copy of the case and the stats is a sweep's row's largest cost
@@ -98,6 +119,20 @@ class Outcome:
         row.update(e=predicted.e, predicted_w=predicted.e * self.case.v0, predicted_phi=predicted.phi,
                    w_error=self.w_error, phi_error=self.phi_error, theta_error=self.theta_error,
                    time_scale=predicted.time_scale)
+        return row
+
+    def _body_row(self):
+        """A body case's row: its given start values by name, its v0 (the start's), eps, delta and w0;
+        the outcome (iwc, w, v, t_return, the phases, events); the theory at its start (quadrant, p_plus,
+        b, theorem, e, w1_star, predicted_w = e v0) and w_error."""
+        v0, e = self._v0_and_e()
+        p, case = self.prediction, self.case
+        row = {**dict(case.given), "v0": v0, "epsilon": case.epsilon, "delta": case.delta, "w0": case.w0,
+               "iwc": self.iwc, "w": self.state["w"], "v": self.state["v"], "t_return": self.t_return,
+               "compression": self.compression, "stick": self.stick, "lift_off": self.lift_off,
+               "flight_back": self.flight_back, "events": self.events}
+        row.update(quadrant=p.quadrant, p_plus=float(p.coefficients.p_plus), b=float(p.coefficients.b),
+                   theorem=p.theorem, e=e, w1_star=p.w1_star, predicted_w=e * v0, w_error=self.w_error)
         return row
 
 

@@ -55,7 +55,8 @@ def convergence(experiment, case, epsilons):
 
 def separatrix(experiment, case, *, lower, upper, tolerance=1e-6):
     """The w10 at which the FMU's outcome switches from IWC (below) to lift-off (above),
-    bisected between w10 = lower (must give IWC) and upper (must give lift-off)."""
+    bisected between w10 = lower (must give IWC) and upper (must give lift-off); `experiment`:
+    what runs a case (fmu.body.Body, or the rod's fmu.experiment.Experiment)."""
     def iwc(w10):
         return experiment.run(replace(case, w10=w10)).iwc
     if not iwc(lower) or iwc(upper):

@@ -90,7 +90,7 @@ def sweep_map_figure(rows, axes, path, *, title="", dpi=150):
     ran = rows["iwc"].notna().to_numpy()
     stuck = ran & rows["iwc"].fillna(False).astype(bool).to_numpy()
     paradox = (rows["p_plus"] < 0).to_numpy()
-    predicted = rows["predicts_iwc"].map(lambda v: v is True or v == 1.0).to_numpy(dtype=bool)
+    predicted = np.array([not pd.isna(v) and bool(v) for v in rows["predicts_iwc"]], dtype=bool)
     told = rows["predicts_iwc"].notna().to_numpy() & ran
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 6), sharex=True, sharey=True)
     left.scatter(x[stuck], y[stuck], c="tab:red", s=28, label="IWC (stuck, then lifted off)")

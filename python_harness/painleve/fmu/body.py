@@ -14,7 +14,8 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
   velocity (v0, w0), solving for the start values the user did not give (and any parameters named) by
   Gauss-Newton on the FMU's own y, v, w (finite-difference Jacobian; for the arm: theta2 and both
   rates from theta1, or both rates and the pivot's height H from theta1 and theta2);
-- `run(case)`: the Outcome of a case of either kind (experiments.case: the rod's Case, a BodyCase);
+- `run(case, predicted)`: the Outcome of a case of either kind (experiments.case: the rod's Case, a
+  BodyCase), the prediction it was run from attached (its w error: experiments.outcome);
 - `coefficients(values)`: theory.general.Coefficients at a state, with its epsilon and delta;
 - `iwc(values)`: the run from that start until the contact point, having touched, is back at
   y = 0: its Outcome (experiments.outcome), through the interface the Body was opened with:
@@ -23,6 +24,7 @@ q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematic
   return bisected on its steps).
 """
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -45,11 +47,11 @@ class BodyError(ValueError):
 
 
 class Body:
-    """One body FMU, extracted and instantiated once (Experiment) for one interface (fmpy's fmi_type,
-    "ModelExchange" or "CoSimulation"), for any number of evaluations and runs."""
+    """One body FMU, extracted and instantiated once (Experiment, with its `options`: tmp_dir, ...) for one
+    interface (fmpy's fmi_type, "ModelExchange" or "CoSimulation"), for any number of evaluations and runs."""
 
-    def __init__(self, fmu_path, *, fmi_type="ModelExchange"):
-        self.experiment = Experiment(fmu_path, fmi_type=fmi_type)
+    def __init__(self, fmu_path, *, fmi_type="ModelExchange", **options):
+        self.experiment = Experiment(fmu_path, fmi_type=fmi_type, **options)
         md = self.experiment.model_description
         self.variables = {v.name: v for v in md.modelVariables}
         needed = REQUIRED + (REQUIRED_CS if fmi_type == "CoSimulation" else ())
@@ -119,6 +121,17 @@ class Body:
                             f"delta {got['delta']:.6g}, not {epsilon:g}, {delta:g}")
         return out
 
+    def start_names(self, given, solve=()):
+        """The names, in order, of the start values a case that gives `given` (names) and solves for `solve`
+        starts from (body_case.predict's start): those given, the compliance's (compliance: epsilon and
+        delta, or k and c), then what floor_start solves for (the states not given, the parameters in
+        `solve`)."""
+        names = dict.fromkeys(given)
+        names.update(dict.fromkeys(("epsilon", "delta") if self.variables["epsilon"].causality == "parameter"
+                                   else (STIFFNESS, DAMPING)))
+        names.update(dict.fromkeys([s for s in self.states if s not in names] + [p for p in solve if p not in self.states]))
+        return list(names)
+
     def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40, solve=()):
         """`values` completed with the start values it does not give (and the parameters named in `solve`), so
         that y = 0, v = v0, w = w0 (Gauss-Newton, least squares: unknowns that do not move y, v, w keep
@@ -163,16 +176,20 @@ class Body:
                 break
         return u, r
 
-    def run(self, case, start=None):
-        """The Outcome of a case of either kind (experiments.case) from its start on the floor (`start`:
-        predict(self, case).start, if known). The rod's Case runs as Experiment.run runs it (its horizon
-        and, through Co-Simulation, its return from the closed forms: every state of it is given, so its
-        start is its start_values); any other case from its solved start (iwc)."""
+    def run(self, case, predicted=None, *, closed_form=None, doublings=30):
+        """The Outcome of a case of either kind (experiments.case) from its start on the floor, carrying
+        `predicted` (body_case.predict(self, case), if known) as its prediction. The rod's Case runs as
+        Experiment.run runs it (its horizon and, through Co-Simulation, its return from the closed forms,
+        `closed_form`: analytic.predict(case) if known, a sweep's made over its batch's arrays; every
+        state of it is given, so its start is its start_values); any other case from the start
+        `predicted` solved (iwc, its horizon doubled at most `doublings` times)."""
         if isinstance(case, Case):
-            return self.experiment.run(case)
-        if start is None:
+            outcome = self.experiment.run(case, closed_form)
+        elif predicted is None:
             raise BodyError("a body's case runs from its solved start: body_case.run_body(body, case) solves it")
-        return self.iwc(start, case=case)
+        else:
+            outcome = self.iwc(predicted.start, case=case, doublings=doublings)
+        return outcome if predicted is None else replace(outcome, prediction=predicted)
 
     def iwc(self, values, *, case=None, relative_tolerance=None, horizon=None, doublings=30):
         """The Outcome of the run from `values` (its case: `case`, else the values) until the contact point,

@@ -52,9 +52,9 @@ def predict(body: Body, case: IWCCase) -> BodyPrediction:
                           theorem=theorem, e=e, w1_star=w1s, hypotheses=failed)
 
 
-def run_body(body: Body, case: IWCCase):
+def run_body(body: Body, case: IWCCase, **run):
     """(BodyPrediction, Outcome) of one case of either kind, through the interface `body` was opened with
-    (Body.run)."""
+    (Body.run, with `run`'s keywords), the prediction attached to the Outcome (its w_error, as_row)."""
     predicted = predict(body, case)
-    return predicted, body.run(case, predicted.start)
+    return predicted, body.run(case, predicted, **run)
 

@@ -6,8 +6,8 @@ chunk runs here, and the rest here too unless a local cluster would finish it
 sooner despite its start-up; `--workers` or `--scheduler` choose dask, `--serial`
 this process. On dask the driver submits a few large chunks per worker: a local
 cluster on this machine, or any scheduler by address, unchanged. Each process
-keeps one `Experiment` per FMU (fmpy's fast loop: one unzip, one instance,
-reset between cases); the FMU's bytes are sent to the workers once, so they
+keeps one `Body` per FMU and interface (fmu.body, the runner of every body
+FMU: one unzip, one instance, reset between cases, fmpy's fast loop); the FMU's bytes are sent to the workers once, so they
 need the `painleve` package but not the file. Results are written as chunks
 finish (see `sweepstore`), so an interrupted sweep resumes without recomputing
 what was written. A case's numbers do not depend on where or in which chunk it ran."""
@@ -27,10 +27,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..experiments.outcome import SimulationError, w_error
-from ..fmu.experiment import Experiment
+from ..fmu.body import Body
 from ..theory import analytic as an
 from ..theory.predict_many import predict_many
 from . import plan
+from .body import BodySweep
 from .store import ResultStore, as_frame
 
 
@@ -46,41 +47,41 @@ class FmuBlob:
         return cls(hashlib.sha256(data).hexdigest(), data)
 
 
-_EXPERIMENTS = {}   # in each process: (FMU digest, fmi_type) -> Experiment
+_BODIES = {}   # in each process: (FMU digest, fmi_type) -> Body
 # Held while a batch runs: a worker's batch runs in its executor thread, and the driver's
-# clean-up (client.run(_close_experiments)) in another; freeing an FMU instance that CVode is
+# clean-up (client.run(_close_bodies)) in another; freeing an FMU instance that CVode is
 # integrating in the first corrupts the heap (glibc: "free(): corrupted unsorted chunks",
 # seen when a sweep is interrupted with batches in flight).
 _IN_USE = threading.Lock()
 
 
-def experiment_for(blob, fmi_type, tmp_dir=None):
-    """This process's Experiment for the FMU `blob`, created on first use. The FMU's bytes go to a
-    painleve-* directory only for the Experiment to extract them, and the directory goes at once
+def body_for(blob, fmi_type, tmp_dir=None):
+    """This process's Body for the FMU `blob`, created on first use. The FMU's bytes go to a
+    painleve-* directory only for the Body's Experiment to extract them, and the directory goes at once
     (the Experiment keeps its own extracted copy, which close() removes). `tmp_dir`: where, if it
     exists here (the local cluster's workers: the driver removes it even if they are killed)."""
     key = (blob.digest, fmi_type)
-    if key not in _EXPERIMENTS:
+    if key not in _BODIES:
         tmp_dir = tmp_dir if tmp_dir and os.path.isdir(tmp_dir) else None
         with tempfile.TemporaryDirectory(prefix="painleve-", dir=tmp_dir) as tmp:
             path = os.path.join(tmp, "PainleveRod.fmu")
             with open(path, "wb") as f:
                 f.write(blob.data)
-            _EXPERIMENTS[key] = Experiment(path, fmi_type=fmi_type, tmp_dir=tmp_dir)
-    return _EXPERIMENTS[key]
+            _BODIES[key] = Body(path, fmi_type=fmi_type, tmp_dir=tmp_dir)
+    return _BODIES[key]
 
 
 @atexit.register
-def _close_experiments():
+def _close_bodies():
     """Frees this process's FMU instances and extracted files, unless a batch is running: then
     they are in use, and go when the process ends (a local worker's files with the driver's
     directory)."""
     if not _IN_USE.acquire(blocking=False):
         return
     try:
-        for experiment in _EXPERIMENTS.values():
-            experiment.close()
-        _EXPERIMENTS.clear()
+        for body in _BODIES.values():
+            body.close()
+        _BODIES.clear()
     finally:
         _IN_USE.release()
 
@@ -96,16 +97,16 @@ def predictions(case):
 NOT_RUN = (None,) + (float("nan"),) * 9 + (None,)
 
 
-def case_row(experiment, case, case_id, p):
+def case_row(body, case, case_id, p):
     """One result row, a tuple in store.COLUMNS' order: the case, its predictions `p` (predict's),
-    what the FMU did (status 'ok'), or why it did not run ('outside' the theorems' hypotheses, or
-    'failed' with the FMU's reason)."""
+    what the FMU did (status 'ok': Body.run, the run of every body's case), or why it did not run
+    ('outside' the theorems' hypotheses, or 'failed' with the FMU's reason)."""
     try:
         case.check()
     except an.HypothesisError as err:
         return _row(case_id, "outside", str(err), case, p, None)
     try:
-        outcome = experiment.run(case, p)
+        outcome = body.run(case, closed_form=p)
     except SimulationError as err:
         return _row(case_id, "failed", str(err), case, p, None)
     except Exception as err:   # one bad case must not lose its batch
@@ -126,12 +127,15 @@ def _row(case_id, status, message, c, p, o):
 
 
 def run_batch(spec, ids, blob, fmi_type="ModelExchange", tmp_dir=None):
-    """A batch of cases, on whichever process runs it: a typed DataFrame of rows. The predictions are
-    the batch's over arrays (predict_many), handed to each case's run and row."""
+    """A batch of cases, on whichever process runs it: a typed DataFrame of rows. The rod's sweep
+    (a SweepSpec): the predictions are the batch's over arrays (predict_many), handed to each case's
+    run and row; a body's (sweep.body.BodySweep): its rows (BodySweep.frame)."""
     with _IN_USE:
-        experiment = experiment_for(blob, fmi_type, tmp_dir)
+        body = body_for(blob, fmi_type, tmp_dir)
+        if isinstance(spec, BodySweep):
+            return spec.frame(body, ids)
         cases = spec.cases(ids)
-        return as_frame([case_row(experiment, case, i, p)
+        return as_frame([case_row(body, case, i, p)
                          for i, case, p in zip(np.asarray(ids).tolist(), cases, predict_many(cases))])
 
 
@@ -175,7 +179,7 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
     dask = _connect(scheduler, workers) if len(remaining) and chosen else None
     # The local cluster's workers extract the FMU in here, removed on every way out, even when
     # the workers are stopped before they could clean up (Ctrl-C); a scheduler's workers may
-    # be on other machines and outlive the sweep: they clean up themselves (_close_experiments).
+    # be on other machines and outlive the sweep: they clean up themselves (_close_bodies).
     with tempfile.TemporaryDirectory(prefix="painleve-sweep-") as work, \
             _progress(spec.total, len(done), progress) as bar:
         def here(ids):
@@ -191,7 +195,7 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
         else:
             # The probe's rate is its cases' alone: the FMU extracted before the clock, and the
             # first write (pyarrow's import, 0.2-0.5 s) after it.
-            experiment_for(blob, fmi_type)
+            body_for(blob, fmi_type)
             probe, rest = remaining[:batch or plan.PROBE_CASES], remaining[batch or plan.PROBE_CASES:]
             t = time.monotonic()
             df = run_batch(spec, probe, blob, fmi_type)
@@ -200,7 +204,7 @@ def run_sweep(spec, fmu_path, out, *, fmi_type="ModelExchange", scheduler=None, 
             bar.update(len(df))
             workers = max(2, int(plan.free_cores()))
             if not serial and len(rest) and plan.cluster_pays(per_case, len(rest), workers, start_up):
-                _close_experiments()            # this process's instance: the workers have theirs
+                _close_bodies()            # this process's instance: the workers have theirs
                 _run_on_dask(spec, rest, blob, fmi_type, _connect(None, workers), batch=batch, per_case=per_case,
                              **on_dask)
             else:
@@ -270,7 +274,7 @@ def _run_on_dask(spec, ids, blob, fmi_type, dask, *, store, bar, scheduler, say,
         raise
     finally:
         try:    # each worker frees its FMU instance and extracted files (workers do not run atexit)
-            client.run(_close_experiments)
+            client.run(_close_bodies)
         except Exception:
             pass
         client.close()

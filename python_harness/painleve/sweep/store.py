@@ -108,12 +108,15 @@ class ResultStore:
         df.to_parquet(tmp, index=False)
         os.replace(tmp, name)
 
-    def read(self):
-        """All rows written so far, typed, sorted by id."""
+    def read(self, columns=COLUMNS):
+        """All rows written so far, sorted by id: `columns` ({name: type}) typed, in that order (the rod's
+        sweep's), or every column as written (None: a body's sweep, typed by sweep.body.typed)."""
         if self.kind == "csv":
             df = pd.read_csv(self.path, keep_default_na=False, na_values=[""])
             for name in ("status", "message"):
                 df[name] = df[name].fillna("")
         else:
             df = pd.read_parquet(self.path)
-        return df[list(COLUMNS)].astype(COLUMNS).sort_values("id", ignore_index=True)
+        if columns is not None:
+            df = df[list(columns)].astype(columns)
+        return df.sort_values("id", ignore_index=True)

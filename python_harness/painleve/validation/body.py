@@ -1,18 +1,30 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Validation of any body FMU (`painleve validate --fmu TwoLinkArm.fmu`): at the user's configuration,
-the start found on the floor, the paradox there (p_plus < 0, Theorem 1 or 2's hypotheses), and, through
-each interface asked for, the IWC converging to the e of the FMU's own coefficients as eps falls
-(Theorem 1: w/v0 -> e)."""
+"""Validation of any body FMU (`painleve validate --fmu TwoLinkArm.fmu`), every run through fmu.body
+(validate_fmu): at the user's configuration (a case), the start found on the floor, the paradox there
+(p_plus < 0, Theorem 1 or 2's hypotheses), and, through each interface asked for, the IWC converging
+to the e of the FMU's own coefficients as eps falls (Theorem 1: w/v0 -> e); with no case, on the rod's
+model, the rod's own suite (validation.suite: its cases in closed form)."""
 from dataclasses import replace
 
-from ..experiments.outcome import w_error
 from ..fmu.body import Body, BodyError
 from ..fmu.body_case import predict, run_body
 from ..fmu.experiment import FMI_TYPES
 from .report import Check
+from .suite import interfaces_of, validate
 
 EPSILONS = (1e-4, 1e-5, 1e-6)
 FINAL = 0.01        # |w/v0 - e| <= FINAL e at the smallest eps (the rod's thin wedge: a few % at 1e-5)
+
+
+def validate_fmu(fmu, case=None, *, interfaces=None, sample=24, law=None):
+    """`painleve validate`'s checks of a body FMU through `interfaces` ("ME", "CS"; default: every one the
+    FMU declares), each case run by fmu.body.Body: with `case` (an IWCCase, a BodyCase from the user's
+    start values) validate_body; without, the rod's suite (validation.suite.validate: its static contract,
+    default experiment and Theorem 1 and 2 cases with `sample` random ones, under the compliance law
+    `law`), which only the rod's model has."""
+    if case is None:
+        return validate(fmu, interfaces=interfaces, sample=sample, law=law)
+    return validate_body(fmu, case, interfaces=tuple(interfaces or interfaces_of(fmu)))
 
 
 def validate_body(fmu, case, epsilons=EPSILONS, interfaces=("ME",)):
@@ -50,7 +62,7 @@ def _convergence_checks(body, case, epsilons, interface, e):
     for eps in epsilons:
         predicted, outcome = run_body(body, replace(case, epsilon=eps))
         v0 = predicted.start_v0
-        err = w_error(outcome.w, v0, predicted.e)
+        err = outcome.w_error
         errors.append(abs(err))
         checks.append(Check(f"body/{interface}/eps{eps:g}/iwc", "w/v0 at the return to y = 0 against e (eq eGeneral)",
                             f"w/v0 = {outcome.w / v0:.6g}, e = {predicted.e:.6g}, error {err:+.3e} "

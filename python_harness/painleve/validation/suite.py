@@ -24,7 +24,8 @@ from ..experiments import acceptance
 from ..experiments.case import Case
 from ..experiments.outcome import SimulationError
 from ..experiments.studies import separatrix
-from ..fmu.experiment import FMI_TYPES, Experiment
+from ..fmu.body import Body
+from ..fmu.experiment import FMI_TYPES
 from ..theory import analytic as an
 from .report import Check
 from .static import default_experiment_check, static_checks
@@ -83,11 +84,11 @@ def _label(case):
 
 
 # ------------------------------------------------------------------ the checks
-def theorem1_check(experiment, name, case, interface):
+def theorem1_check(body, name, case, interface):
     epsilons = acceptance.in_regime(EPSILONS, case.delta)
     cid = f"theorem1/{interface}/{name}"
     try:
-        outs = [experiment.run(replace(case, epsilon=eps)) for eps in epsilons]
+        outs = [body.run(replace(case, epsilon=eps)) for eps in epsilons]
     except SimulationError as err:
         return Check(cid, f"Theorem 1, {_label(case)}", f"simulation failed: {err}", "IWC", False)
     predicted = an.predict(case)
@@ -103,7 +104,7 @@ def theorem1_check(experiment, name, case, interface):
                                     iwc=iwc, e=predicted.e, case=asdict(case), failures=failures))
 
 
-def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
+def theorem2_checks(body, name, state, interface, epsilons=(1e-5, 1e-6)):
     predicted = an.predict(state)
     w1s = predicted.w1_star
     checks = []
@@ -111,7 +112,7 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
     cid = f"theorem2/{interface}/{name}"
     tolerance = acceptance.ERROR_AT_SMALLEST_EPS
     try:
-        outs = [experiment.run(replace(below, epsilon=eps)) for eps in epsilons]
+        outs = [body.run(replace(below, epsilon=eps)) for eps in epsilons]
         w_err = np.array([o.w_error / predicted.e for o in outs])
         iwc = all(o.iwc for o in outs)
         checks.append(Check(
@@ -121,7 +122,7 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
             f"IWC; |err| <= {tolerance:.0%} at eps={epsilons[-1]:g}; errors fall",
             not acceptance.theorem1_failures(outs),
             dict(epsilons=list(epsilons), w_rel_errors=w_err.tolist(), iwc=iwc, w1_star=w1s, case=asdict(below))))
-        outs = [experiment.run(replace(above, epsilon=eps)) for eps in epsilons]
+        outs = [body.run(replace(above, epsilon=eps)) for eps in epsilons]
         ratio = np.array([o.w / eps for o, eps in zip(outs, epsilons)])
         stuck = any(o.iwc for o in outs)
         checks.append(Check(
@@ -136,11 +137,11 @@ def theorem2_checks(experiment, name, state, interface, epsilons=(1e-5, 1e-6)):
     return checks
 
 
-def separatrix_check(experiment, name, state, interface, epsilon=1e-5):
+def separatrix_check(body, name, state, interface, epsilon=1e-5):
     w1s = an.predict(state).w1_star
     cid = f"separatrix/{interface}/{name}"
     try:
-        found = separatrix(experiment, replace(state, epsilon=epsilon), lower=2.0 * w1s, upper=0.5 * w1s,
+        found = separatrix(body, replace(state, epsilon=epsilon), lower=2.0 * w1s, upper=0.5 * w1s,
                            tolerance=1e-3)
     except (ValueError, SimulationError) as err:
         return Check(cid, f"Theorem 2 separatrix at eps={epsilon:g}", f"bisection failed: {err}", "found", False)
@@ -152,24 +153,25 @@ def separatrix_check(experiment, name, state, interface, epsilon=1e-5):
 
 
 def dynamic_checks(fmu_path, interface, *, sample=24, progress=None, law=None):
-    """The theorems' checks through one interface; law: the compliance law's kappa and beta
-    for every case (their predictions then the rigid limit's, analytic.predict)."""
+    """The theorems' checks through one interface, each case run by fmu.body.Body (the runner of every
+    body FMU); law: the compliance law's kappa and beta for every case (their predictions then the
+    rigid limit's, analytic.predict)."""
     law = law or {}
     checks = []
     try:
-        experiment = Experiment(fmu_path, fmi_type=FMI_TYPES[interface])
-    except Exception as err:      # the binary does not load or instantiate
+        body = Body(fmu_path, fmi_type=FMI_TYPES[interface])
+    except Exception as err:      # the binary does not load or instantiate, or it is not a body FMU
         return [Check(f"instantiate/{interface}", f"instantiate through {interface}", f"failed: {err}",
                       "instantiates", False)]
-    with experiment:
+    with body:
         for name, case in theorem1_cases(sample):
-            checks.append(theorem1_check(experiment, name, replace(case, **law), interface))
+            checks.append(theorem1_check(body, name, replace(case, **law), interface))
             progress and progress(checks[-1])
         for name, state in theorem2_states():
-            checks += theorem2_checks(experiment, name, replace(state, **law), interface)
+            checks += theorem2_checks(body, name, replace(state, **law), interface)
             progress and progress(checks[-1])
         name, state = theorem2_states()[0]
-        checks.append(separatrix_check(experiment, name, replace(state, **law), interface))
+        checks.append(separatrix_check(body, name, replace(state, **law), interface))
     return checks
 
 
