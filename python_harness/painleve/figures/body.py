@@ -17,7 +17,7 @@ def configuration_axes(body: Body):
     md = body.experiment.model_description
     for out in md.initialUnknowns:
         if out.variable.name == "p_plus" and out.dependencies:
-            return [d.name for d in out.dependencies if d.name in body.start_names]
+            return [d.name for d in out.dependencies if d.name in body.start_variables]
     raise BodyError(f"{body.name} declares no dependencies of p_plus: name the axes (--axes)")
 
 

@@ -63,12 +63,12 @@ class Body:
             self.close()
             raise BodyError(f"{fmu_path}: its Co-Simulation cannot get and set its state, which a run's return "
                             f"is located with")
-        self.start_names = [v.name for v in md.modelVariables
-                            if v.causality == "output" and v.variability == "continuous" and v.initial == "exact"]
+        self.start_variables = [v.name for v in md.modelVariables
+                                if v.causality == "output" and v.variability == "continuous" and v.initial == "exact"]
         self.name = md.modelName
         self.fmi_type = fmi_type
         # What a run reads at the return: the contact point's height and speeds, and every start value.
-        self.read = CONTACT + tuple(s for s in self.start_names if s not in CONTACT)
+        self.read = CONTACT + tuple(s for s in self.start_variables if s not in CONTACT)
 
     def close(self):
         self.experiment.close()
@@ -124,12 +124,13 @@ class Body:
     def start_names(self, given, solve=()):
         """The names, in order, of the start values a case that gives `given` (names) and solves for `solve`
         starts from (body_case.predict's start): those given, the compliance's (compliance: epsilon and
-        delta, or k and c), then what floor_start solves for (the states not given, the parameters in
+        delta, or k and c), then what floor_start solves for (the start variables not given, the parameters in
         `solve`)."""
         names = dict.fromkeys(given)
         names.update(dict.fromkeys(("epsilon", "delta") if self.variables["epsilon"].causality == "parameter"
                                    else (STIFFNESS, DAMPING)))
-        names.update(dict.fromkeys([s for s in self.states if s not in names] + [p for p in solve if p not in self.states]))
+        names.update(dict.fromkeys([s for s in self.start_variables if s not in names] +
+                                   [p for p in solve if p not in self.start_variables]))
         return list(names)
 
     def floor_start(self, values, v0, w0=0.0, guess=None, max_iterations=40, solve=()):
@@ -137,7 +138,7 @@ class Body:
         that y = 0, v = v0, w = w0 (Gauss-Newton, least squares: unknowns that do not move y, v, w keep
         their guess, the FMU's start otherwise). With nothing to solve for, `values` themselves, checked."""
         self._known(dict.fromkeys(solve))
-        unknown = [s for s in self.start_names if s not in values] + [p for p in solve if p not in self.start_names]
+        unknown = [s for s in self.start_variables if s not in values] + [p for p in solve if p not in self.start_variables]
         target = np.array([0.0, v0, w0])
         tolerance = 1e-12 * (1 + abs(v0) + abs(w0))
         if not unknown:
