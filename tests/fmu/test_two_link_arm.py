@@ -108,7 +108,7 @@ def test_the_default_start_is_in_the_paradox_region_on_the_floor(instance):
 @pytest.mark.parametrize("k", range(5))
 def test_y_is_a_state_calculated_from_the_angles_that_no_one_sets(instance, k):
     # y starts at the tip's height H + l1 sin theta1 + l2 sin theta2 (the arm of helpers.two_link_arm),
-    # is the fifth continuous state, its derivative is w, and fmi2SetReal refuses it with its name.
+    # is the fifth continuous state, and its derivative is w.
     fmu, vr = instance
     p = dict(l1=RNG.uniform(0.1, 1), l2=RNG.uniform(0.1, 1), H=RNG.uniform(0.1, 2))
     q, u = RNG.uniform(-np.pi, 0, 2), RNG.uniform(-4, 4, 2)
@@ -120,9 +120,22 @@ def test_y_is_a_state_calculated_from_the_angles_that_no_one_sets(instance, k):
     x = np.zeros(5)
     fmu.getContinuousStates(x.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), 5)
     assert x[4] == got["y"]
-    fmu.reset()
-    with pytest.raises(fmpy.fmi1.FMICallException):
-        fmu.setReal([vr["y"]], [0.1])
+
+
+def test_y_cannot_be_set_before_initialization_and_the_error_names_it(arm_path):
+    # Its own instance and logger: fmpy's logging proxy keeps one logger for every instance, the last
+    # one installed, which the shared default callbacks would call after its owner is gone.
+    md = read_model_description(arm_path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    said = []
+    fmu = instantiate_fmu(extract(arm_path), md, fmi_type="ModelExchange",
+                          logger=lambda env, name, status, category, message: said.append(message.decode()))
+    try:
+        with pytest.raises(fmpy.fmi1.FMICallException):
+            fmu.setReal([vr["y"]], [0.1])
+        assert any("y can be set only in Continuous-Time Mode" in m for m in said), said
+    finally:
+        fmu.freeInstance()
 
 
 def test_a_tip_placed_on_the_floor_starts_exactly_on_it(instance):
