@@ -157,14 +157,14 @@ double contact_energy(const Contact *c, ContactMode m, const double x[])
     return s.energy + spring;
 }
 
-/* u_i' in mode m: free part plus the contact forces' (the friction opposes slip s, or holds
- * v' = 0 while sticking: the Filippov combination of the two slip fields, with which
- * F_T v = 0 and only the damper works; docs/model.md §1). */
 int contact_nx(const Body *b)
 {
     return 2 * b->dof + (b->has_gap_state ? 1 : 0);
 }
 
+/* u_i' in mode m: free part plus the contact forces' (the friction opposes slip s, or holds
+ * v' = 0 while sticking: the Filippov combination of the two slip fields, with which
+ * F_T v = 0 and only the damper works; docs/model.md §1). */
 void contact_derivatives(const Contact *c, ContactMode m, const double x[], double dx[])
 {
     const Body *b = c->body;

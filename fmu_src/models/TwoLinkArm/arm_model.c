@@ -67,18 +67,19 @@ static Contact contact_at(const Model *m, const double x[ARM_NX], Trial *t)
     return contact_of(&t->body, &t->law);
 }
 
-/* der(theta) = omega; der(omega) = (g/L) times the scaled omega'; der(y) = w (L/T times the scaled). */
+/* der(theta) = omega exactly; der(omega) = 1/T^2 times the scaled omega'; der(y) = w, the scaled
+ * rate times sqrt(g L) = L/T as the output w has it, so that der(y) is w to the bit. */
 static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX], const double xs[ARM_NX],
                         double dx[ARM_NX])
 {
-    double dxs[ARM_NX], unit[ARM_NX];
+    double dxs[ARM_NX];
     contact_derivatives(c, m->run.mode, xs, dxs);
-    state_units(m, unit);
-    const double T = time_unit(m);
-    for (int i = 0; i < ARM_NX; ++i) dx[i] = unit[i] / T * dxs[i];
-    dx[ARM_THETA1] = x[ARM_OMEGA1];   /* exactly the rates */
+    const double T = time_unit(m), rate = 1 / T / T;
+    dx[ARM_THETA1] = x[ARM_OMEGA1];
     dx[ARM_THETA2] = x[ARM_OMEGA2];
-    dx[ARM_Y] = sqrt(m->g * (m->l1 + m->l2)) * dxs[ARM_Y];   /* L/T as the output w has it: der(y) is w */
+    dx[ARM_OMEGA1] = rate * dxs[ARM_OMEGA1];
+    dx[ARM_OMEGA2] = rate * dxs[ARM_OMEGA2];
+    dx[ARM_Y] = sqrt(m->g * (m->l1 + m->l2)) * dxs[ARM_Y];
 }
 
 /* ------------------------------------------------------------ variables */
