@@ -18,21 +18,20 @@ double __wrap_pow(double x, double y);
 double __wrap_exp(double x);
 double __wrap_log(double x);
 
+/* What each wrapper calls: glibc's oldest symbol where one is named, else the function the link
+ * would have called. */
 #ifdef OLDEST
 __asm__(".symver oldest_pow, " OLDEST(pow));
 __asm__(".symver oldest_exp, " OLDEST(exp));
 __asm__(".symver oldest_log, " OLDEST(log));
-double oldest_pow(double x, double y);
-double oldest_exp(double x);
-double oldest_log(double x);
-double __wrap_pow(double x, double y) { return oldest_pow(x, y); }
-double __wrap_exp(double x) { return oldest_exp(x); }
-double __wrap_log(double x) { return oldest_log(x); }
+#define TARGET(name) oldest_##name
 #else
-double __real_pow(double x, double y);
-double __real_exp(double x);
-double __real_log(double x);
-double __wrap_pow(double x, double y) { return __real_pow(x, y); }
-double __wrap_exp(double x) { return __real_exp(x); }
-double __wrap_log(double x) { return __real_log(x); }
+#define TARGET(name) __real_##name
 #endif
+
+double TARGET(pow)(double x, double y);
+double TARGET(exp)(double x);
+double TARGET(log)(double x);
+double __wrap_pow(double x, double y) { return TARGET(pow)(x, y); }
+double __wrap_exp(double x) { return TARGET(exp)(x); }
+double __wrap_log(double x) { return TARGET(log)(x); }
