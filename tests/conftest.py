@@ -96,3 +96,18 @@ def loaded(fmu_path):
     from painleve.fmu.experiment import Experiment
     with Experiment(fmu_path) as experiment:
         yield experiment
+
+
+@pytest.fixture
+def ran(monkeypatch):
+    """The (interface, case) of every painleve.fmu.body.Body.run, in order: the one runner of every
+    body FMU, which the tests of validate and sweep check their cases go through."""
+    from painleve.fmu.body import Body
+    seen = []
+    run = Body.run
+
+    def recorded(body, case, *args, **kwargs):
+        seen.append((body.fmi_type, case))
+        return run(body, case, *args, **kwargs)
+    monkeypatch.setattr(Body, "run", recorded)
+    return seen

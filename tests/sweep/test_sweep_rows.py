@@ -59,19 +59,11 @@ def test_a_sweeps_rows_are_the_generic_harness_path_bit_for_bit(fmu_path):
     assert len(fine) >= 10 and np.all(np.abs(fine["w_error"]) < 2e-3)
 
 
-def test_a_sweeps_cases_run_through_the_body_runner_and_land_on_theorem_1(fmu_path, monkeypatch):
+def test_a_sweeps_cases_run_through_the_body_runner_and_land_on_theorem_1(fmu_path, ran):
     """The rod's sweep has no runner of its own: every case that runs is fmu.body.Body.run's (the runner
     of every body FMU), through either interface; and its rows carry the physics: e is Theorem 1's,
     by the exact integration of the sticking system, and w/v0 meets it to O(eps ln 1/eps)."""
-    from painleve.fmu.body import Body
     spec = SweepSpec.from_texts({"theta0": "0.3:1.2:6", "delta": "0,1", "epsilon": "1e-5"})
-    ran = []
-    run = Body.run
-
-    def recorded(body, case, *args, **kwargs):
-        ran.append((body.fmi_type, case))
-        return run(body, case, *args, **kwargs)
-    monkeypatch.setattr(Body, "run", recorded)
     for fmi_type in ("ModelExchange", "CoSimulation"):
         ran.clear()
         try:

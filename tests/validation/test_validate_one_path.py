@@ -8,21 +8,7 @@ from dataclasses import replace
 import pytest
 
 from painleve.experiments.case import BodyCase, Case
-from painleve.fmu.body import Body
 from painleve.validation.body import validate_fmu
-
-
-@pytest.fixture
-def ran(monkeypatch):
-    """The (interface, case) of every Body.run, in order."""
-    seen = []
-    run = Body.run
-
-    def recorded(body, case, *args, **kwargs):
-        seen.append((body.fmi_type, case))
-        return run(body, case, *args, **kwargs)
-    monkeypatch.setattr(Body, "run", recorded)
-    return seen
 
 
 @pytest.mark.parametrize("interface", ["ME", "CS"])
