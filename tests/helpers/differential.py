@@ -19,6 +19,7 @@ by the start's speed v0, angles in radians, angular rates by v0 over the length;
 position and velocity by its motion's amplitude). In flight after a damped lift-off nothing
 switches, so where the importer's solver put the lift-off moves this state only by the solver's
 error."""
+import collections
 import functools
 import math
 import pathlib
@@ -40,6 +41,7 @@ DEFAULT_BOUND = 1e-4        # ... and by this at the FMU's default tolerance
 SENSITIVITY_STEP = 1e-10    # the start angle's move that finds cases near a separatrix
 SENSITIVITY_LIMIT = 1e-7    # ... by moving the reference's answer more than this
 REF_RTOL = 1e-11            # the references' DOP853 tolerance (their answers move < 1e-9 to 1e-12)
+REFINED = collections.Counter()     # Model Exchange runs run again on a finer grid, by model name (Loaded.me)
 
 
 def fmu_path(model, version):
@@ -102,14 +104,27 @@ class Loaded:
             fmu.freeLibrary()
         return out
 
-    def me(self, start, stop_time, outputs, rtol, intervals=50):
+    def me(self, start, stop_time, outputs, rtol, intervals=500):
         """Model Exchange under fmpy.simulate_fmu's CVode at relative tolerance rtol, output grid of
-        `intervals` equal steps. Returns the outputs at stop_time."""
+        `intervals` equal steps (500: fmpy's default). Returns the outputs at stop_time.
+
+        fmpy's CVode takes at most 500 steps from one output point to the next, and says mxstep
+        past them. A stiff transient resolved to a tight tolerance needs more: the contact's
+        lightly damped ringing at a stick entry takes about 600 steps at rtol 1e-9, where BDF of
+        order 4 and 5 is unstable and CVode cuts its steps. Such a run is run again, as an fmpy
+        user would, on a grid 10 times finer (counted in REFINED)."""
         from fmpy import simulate_fmu
-        res = simulate_fmu(self.dir, model_description=self.md, fmi_type="ModelExchange", solver="CVode",
-                           relative_tolerance=rtol, start_time=0.0, stop_time=stop_time,
-                           output_interval=stop_time / intervals, start_values=dict(start), output=list(outputs),
-                           validate=False)
+        for grid in (intervals, 10 * intervals):
+            try:
+                res = simulate_fmu(self.dir, model_description=self.md, fmi_type="ModelExchange", solver="CVode",
+                                   relative_tolerance=rtol, start_time=0.0, stop_time=stop_time,
+                                   output_interval=stop_time / grid, start_values=dict(start), output=list(outputs),
+                                   validate=False)
+                break
+            except RuntimeError as e:
+                if "mxstep" not in str(e) or grid != intervals:
+                    raise
+                REFINED[self.md.modelName] += 1
         row = res[-1]
         # fmpy ends a run at the first time it takes as the stop time: math.isclose, within 1e-9 of it
         assert math.isclose(res["time"][-1], stop_time), (res["time"][-1], stop_time)
@@ -125,11 +140,14 @@ class Case:
     """One physical case: the model, the FMU's start values, where to compare (t_end), the reference
     (a callable giving the compared quantities and their scales at t_end), and the sensitivity probe
     (the reference of the case with its start angle moved by SENSITIVITY_STEP; None if the model
-    has no separatrix)."""
+    has no separatrix), and the phases the run covers whose errors add (at least 1): the rod's
+    contacts, each an IWC that amplifies what it is entered with, and the table's periods, over
+    each of which an integrator's phase error grows; the bound is per phase (bound_of)."""
 
-    def __init__(self, model, name, start, t_end, quantities, reference, perturbed=None):
+    def __init__(self, model, name, start, t_end, quantities, reference, perturbed=None, phases=1.0):
         self.model, self.name, self.start, self.t_end = model, name, start, t_end
         self.quantities, self.reference, self.perturbed = quantities, reference, perturbed
+        self.phases = max(1.0, phases)
 
     def __repr__(self):
         return f"{self.model}[{self.name}]"
@@ -183,7 +201,8 @@ def rod_reference(alpha, mu, delta, epsilon, v0, w0, theta0, phi0, t_end=None):
         if name == "re-contact" and run.x[2][np.searchsorted(run.t, t1)] > 0:
             raise RuntimeError(f"the reference missed a hop above the floor before t = {t1}")
     x = run.x_stop
-    return dict(t=run.t_stop, v=x[1], w=x[3], theta=x[4], phi=x[5], modes=run.modes)
+    contacts = 1 + sum(name in ("touch-down", "re-contact") for *_, name in run.segments)
+    return dict(t=run.t_stop, v=x[1], w=x[3], theta=x[4], phi=x[5], modes=run.modes, contacts=contacts)
 
 
 REDRAWN = dict(TwoLinkArm=0, PainleveRod=0, PainleveRodSI=0)   # draws replaced (the reference could not compare)
@@ -223,7 +242,7 @@ def rod_case(rng, index):
     def perturbed():
         return reference(c.theta0 + SENSITIVITY_STEP)[0]
     return Case("PainleveRod", f"{index}", start, t_end, ("v", "w", "theta", "phi"),
-                lambda: reference(), perturbed)
+                lambda: reference(), perturbed, phases=rod_reference(*key, c.theta0, c.phi0, later)["contacts"])
 
 
 def si_case(rng, index):
@@ -246,7 +265,8 @@ def si_case(rng, index):
     start = dict(m=m, l=l, J=J, g=g, k=k, c=cd, mu=c.mu, x=0.0, v=c.v0 * U, y=0.0, w=eps * c.w10 * U,
                  theta=c.theta0, phi=c.phi0 / T)
     case = Case("PainleveRodSI", f"{index}", start, t_end * T, ("v", "w", "theta", "phi"),
-                lambda: reference(), lambda: reference(c.theta0 + SENSITIVITY_STEP)[0])
+                lambda: reference(), lambda: reference(c.theta0 + SENSITIVITY_STEP)[0],
+                phases=rod_reference(*key, c.theta0, c.phi0, later)["contacts"])
     case.to_scaled = lambda out: dict(v=out["v"] / U, w=out["w"] / U, theta=out["theta"], phi=out["phi"] * T)
     return case
 
@@ -342,18 +362,19 @@ def table_case(rng, index):
     wn = math.sqrt(K / M)
     amp = F0 / K
     z0, vz0 = float(rng.uniform(-3, 3) * amp), float(rng.uniform(-3, 3) * amp * wn)
-    # at most 5 periods of the faster of the free and the forced oscillation: a solver's phase error
-    # grows with every period, so a bound in tol alone holds over a fixed number of them
-    t_end = float(rng.uniform(0.2, 1.0)) * min(2.5, 5 * 2 * math.pi / max(wn, 2 * math.pi * f))
+    # at most 5 periods of the faster of the free and the forced oscillation
+    fastest = max(wn, 2 * math.pi * f)
+    t_end = float(rng.uniform(0.2, 1.0)) * min(2.5, 5 * 2 * math.pi / fastest)
     p = dict(M=M, K=K, C=C, F0=F0, frequency=f)
     scales = dict(position=4 * amp + abs(z0) + abs(vz0) / wn)
-    scales["velocity"] = scales["position"] * max(wn, 2 * math.pi * f)
+    scales["velocity"] = scales["position"] * fastest
 
     def reference():
         (z,), (vz,) = ST.closed_form([t_end], 0.0, z0, vz0, 0.0, **p)
         return dict(position=z, velocity=vz), scales
     start = dict(p, position=z0, velocity=vz0)
-    return Case("ShakerTable", f"{index}", start, t_end, ("position", "velocity"), reference)
+    return Case("ShakerTable", f"{index}", start, t_end, ("position", "velocity"), reference,
+                phases=t_end * fastest / (2 * math.pi))
 
 
 MAKERS = dict(PainleveRod=rod_case, PainleveRodSI=si_case, TwoLinkArm=arm_case, ShakerTable=table_case)
@@ -399,11 +420,11 @@ class Outcome:
         return f"{self.case!r} FMI {self.version} {self.interface} tol {tol}: {what}"
 
 
-def bound_of(tol):
-    return DEFAULT_BOUND if tol is None else K_BOUND * tol
+def bound_of(tol, phases=1.0):
+    return (DEFAULT_BOUND if tol is None else K_BOUND * tol) * phases
 
 
-def run_case(loaded, case, interface, tol, steps=1, intervals=50):
+def run_case(loaded, case, interface, tol, steps=1, intervals=500):
     """Run case on loaded (CS at tol, None: the default; or ME at rtol tol) and compare."""
     t0 = time.perf_counter()
     try:
@@ -412,14 +433,14 @@ def run_case(loaded, case, interface, tol, steps=1, intervals=50):
         else:
             out = loaded.me(case.start, case.t_end, case.quantities, rtol=tol, intervals=intervals)
     except Exception as e:      # an error status (fmpy's FMICallException) or a failed CVode run
-        return Outcome(case, loaded.version, interface, tol, bound_of(tol), error=f"{type(e).__name__}: {e}",
-                       seconds=time.perf_counter() - t0)
+        return Outcome(case, loaded.version, interface, tol, bound_of(tol, case.phases),
+                       error=f"{type(e).__name__}: {e}", seconds=time.perf_counter() - t0)
     if hasattr(case, "to_scaled"):
         out = case.to_scaled(out)
     ref, scales = case.reference()
     diff = scaled_difference(out, ref, scales)
-    return Outcome(case, loaded.version, interface, tol, bound_of(tol), diff=diff, seconds=time.perf_counter() - t0,
-                   values=out)
+    return Outcome(case, loaded.version, interface, tol, bound_of(tol, case.phases), diff=diff,
+                   seconds=time.perf_counter() - t0, values=out)
 
 
 def tolerances(case, rng):
