@@ -9,12 +9,12 @@ What fails a run:
   Exchange runs on fmpy's default output grid, and once more on a 10 times finer one where fmpy's
   CVode runs out of its 500 steps between output points: differential.Loaded.me);
 * a scaled difference from the reference (each quantity in its scale: velocities by v0, angles in
-  radians, angular rates by v0 over the length; differential.scaled_difference) above the bound
-  K tol at relative tolerance tol (K = 100: a solver keeps each step's error below tol, and the
-  global error over the few hundred steps of a contact is a modest multiple of that), or 1e-4
-  at the FMU's default tolerance (1e-6); that per phase whose errors add: per contact a rod's run
-  covers (each an IWC that amplifies the error it is entered with), per period of the table (over
-  each an integrator's phase error grows).
+  radians, angular rates by v0 over the length or their size if larger;
+  differential.scaled_difference) above the bound K tol at relative tolerance tol (K = 100: a solver
+  keeps each step's error below tol, and the global error over the few hundred steps of a contact is
+  a modest multiple of that), or 1e-4 at the FMU's default tolerance (1e-6); that per phase whose
+  errors add: per contact a rod's run covers (each an IWC that amplifies the error it is entered
+  with), per period of the table (over each an integrator's phase error grows).
 
 A tolerance that changes nothing: each case runs in Co-Simulation at a loose tolerance (1e-7.5 to
 1e-5) and at a tight one 30 to 1000 times smaller (down to 1e-10), both held to their own bound. A
