@@ -71,8 +71,8 @@
 #define model_assign NAMESPACED(model_assign)
 #define model_begin_integration NAMESPACED(model_begin_integration)
 #define model_calculated_partial NAMESPACED(model_calculated_partial)
-#define model_check_range NAMESPACED(model_check_range)
 #define model_check NAMESPACED(model_check)
+#define model_check_rules NAMESPACED(model_check_rules)
 #define model_decide_initial_mode NAMESPACED(model_decide_initial_mode)
 #define model_derivatives_at NAMESPACED(model_derivatives_at)
 #define model_event_update NAMESPACED(model_event_update)
@@ -106,7 +106,6 @@
 #define model_step_begin NAMESPACED(model_step_begin)
 #define model_step_end NAMESPACED(model_step_end)
 #define model_stored NAMESPACED(model_stored)
-#define model_touch NAMESPACED(model_touch)
 #define model_update NAMESPACED(model_update)
 #define model_variable NAMESPACED(model_variable)
 

@@ -7,8 +7,9 @@
  * A model's files hold only what is special to it. model_common.c gives every model
  * what follows from its variable list, and the default of each optional part that
  * the model's config.h does not claim. A config.h that defines
- *   MODEL_CHECK          provides model_check (rules beyond the variables' ranges);
- *                        default: the range check alone, model_check_range;
+ *   MODEL_CHECK          provides model_check_rules (rules beyond the variables'
+ *                        ranges, asked of a finite value before its range); default:
+ *                        the range check alone;
  *   MODEL_SET_TIME       provides model_set_time (a model driven by time);
  *                        default: an autonomous model, which ignores the time;
  *   MODEL_INPUT_SET      provides model_input_set (an input whose set changes the
@@ -81,25 +82,33 @@ bool model_settable(const VariableInfo *info);
 /* The start values of every variable: a new model. */
 void model_reset(Model *m);
 
-/* NULL when value is allowed for settable variable vr, else why not (optional: MODEL_CHECK). */
+/* NULL when value is allowed for settable variable vr, else why not: finite, the
+ * model's rules (MODEL_CHECK), then within [min, max]. */
 const char *model_check(unsigned int vr, double value);
+
+/* NULL when a finite value keeps the model's rules beyond the ranges, else why not
+ * (optional: MODEL_CHECK). */
+const char *model_check_rules(unsigned int vr, double value);
 
 /* Sets a settable variable (checked before); values travel as double
  * whatever the variable's type. */
 void model_set(Model *m, unsigned int vr, double value);
 double model_get(Model *m, unsigned int vr);
 
-/* For the models' own files (model_common.c, from config.h's list): a variable's
- * field written (settable kinds only) and read, and the range check every
- * settable variable gets (NULL if value is finite and within [min, max]).
- * A model's Model has the fields x[MODEL_NX], dx[MODEL_NX], stale and partials_stale; model_update computes what it derives
- * (dx, z, outputs) when stale; model_touch marks it stale: whatever changed,
- * the derived values follow it when next asked for. */
+/* A variable's field written (settable kinds only) and read (model_common.c, from
+ * config.h's list). A model's Model has the fields x[MODEL_NX], dx[MODEL_NX], stale
+ * and partials_stale; model_update computes what it derives (dx, z, outputs) when
+ * stale; model_touch marks it stale: whatever changed, the derived values follow it
+ * when next asked for. model_touch is inline so that a model's files call nothing of
+ * model_common.c, which calls them. */
 void model_update(Model *m);
-void model_touch(Model *m);
 void model_assign(Model *m, unsigned int vr, double value);
 double model_stored(const Model *m, unsigned int vr);
-const char *model_check_range(unsigned int vr, double value);
+
+static inline void model_touch(Model *m)
+{
+    m->stale = m->partials_stale = true;
+}
 
 /* The model becomes `saved` (an FMU state restored). */
 void model_restore(Model *m, const Model *saved);

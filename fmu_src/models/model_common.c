@@ -63,10 +63,14 @@ double model_stored(const Model *m, unsigned int vr)
     switch (vr) { MODEL_VARIABLES(MODEL_READ) default: return NAN; }
 }
 
-const char *model_check_range(unsigned int vr, double value)
+const char *model_check(unsigned int vr, double value)
 {
     const VariableInfo *info = model_variable(vr);
     if (!isfinite(value)) return "must be finite";
+#ifdef MODEL_CHECK
+    const char *broken = model_check_rules(vr, value);
+    if (broken) return broken;
+#endif
     if (value < info->min || value > info->max) return "is out of range";
     return NULL;
 }
@@ -85,11 +89,6 @@ const ModelField model_fields[] = { MODEL_VARIABLES(MODEL_FIELD) MODEL_INTERNALS
 const size_t model_n_fields = sizeof model_fields / sizeof model_fields[0];
 
 /* ----------------------------------------------------- states, derived values */
-
-void model_touch(Model *m)
-{
-    m->stale = m->partials_stale = true;
-}
 
 void model_set(Model *m, unsigned int vr, double value)
 {
@@ -144,13 +143,6 @@ void model_get_indicators(Model *m, double z[])
 }
 
 /* ------------------------------------------- defaults of the optional parts */
-
-#ifndef MODEL_CHECK
-const char *model_check(unsigned int vr, double value)
-{
-    return model_check_range(vr, value);
-}
-#endif
 
 #ifndef MODEL_SET_TIME
 void model_set_time(Model *m, double time)
