@@ -28,11 +28,12 @@ Left out: cases whose reference moves by more than 1e-7 (scaled) when the start 
 test_left_out_cases_are_few counts them and fails if they are more than a tenth of the cases, so
 the test cannot become vacuous.
 
-Where: the rod (and the SI rod) at its return to y = 0 after the first contact, or in half the
-cases up to 1.5 time units later through the flight and the contacts after it (the hand-overs of
-Co-Simulation's solvers); the arm at its return; the table after at most 5 periods. A draw whose reference cannot give that point (an arm tip or a rod
-that stays on the floor, a reference that misses a hop) is drawn again (the arm) or compared at
-its return instead (the rod), and counted (differential.REDRAWN, printed by bench/differential.py).
+Where: the rod (and the SI rod) at its return to y = 0 after the first contact, or in half the cases
+up to 1.5 time units later through the flight and the contacts after it (the hand-overs of
+Co-Simulation's solvers); the arm at its return; the table after at most 5 periods. A draw whose
+reference cannot give that point (an arm tip or a rod that stays on the floor, a reference that
+misses a hop) is drawn again (the arm) or compared at its return instead (the rod), and counted
+(differential.REDRAWN, printed by bench/differential.py).
 
 Each case is run by both FMI versions and all four interface settings. bench/differential.py runs
 thousands of cases off CI."""

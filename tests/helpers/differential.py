@@ -14,11 +14,11 @@ references written in the tests:
 * ShakerTable: its closed form (helpers.shaker_table).
 
 A case is compared where the reference's contact is over: the FMU is run to the reference's return
-time and its state there is compared with the reference's, each quantity in its scale (velocities
-by the start's speed v0, angles in radians, angular rates by v0 over the length or their size if
-larger; the table's position and velocity by its motion's amplitude). In flight after a damped lift-off nothing
-switches, so where the importer's solver put the lift-off moves this state only by the solver's
-error."""
+time and its state there is compared with the reference's, each quantity in its scale (velocities by
+the start's speed v0, angles in radians, angular rates by v0 over the length or their size if
+larger; the table's position and velocity by its motion's amplitude). In flight after a damped
+lift-off nothing switches, so where the importer's solver put the lift-off moves this state only by
+the solver's error."""
 import collections
 import functools
 import math
