@@ -19,6 +19,9 @@
 
 static double time_unit(const Model *m) { return sqrt((m->l1 + m->l2) / m->g); }
 
+/* The speed unit L/T = sqrt(g L): of the output w and of der(y), which are then the same bits. */
+static double speed_unit(const Model *m) { return sqrt(m->g * (m->l1 + m->l2)); }
+
 /* The scaled arm and contact law of the current parameters. */
 static void scaled(const Model *m, ArmBody *b, ContactLaw *law)
 {
@@ -68,7 +71,7 @@ static Contact contact_at(const Model *m, const double x[ARM_NX], Trial *t)
 }
 
 /* der(theta) = omega exactly; der(omega) = 1/T^2 times the scaled omega'; der(y) = w, the scaled
- * rate times sqrt(g L) = L/T as the output w has it, so that der(y) is w to the bit. */
+ * rate in speed_unit as the output w, so that der(y) is w to the bit. */
 static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX], const double xs[ARM_NX],
                         double dx[ARM_NX])
 {
@@ -79,7 +82,7 @@ static void derivatives(const Model *m, const Contact *c, const double x[ARM_NX]
     dx[ARM_THETA2] = x[ARM_OMEGA2];
     dx[ARM_OMEGA1] = rate * dxs[ARM_OMEGA1];
     dx[ARM_OMEGA2] = rate * dxs[ARM_OMEGA2];
-    dx[ARM_Y] = sqrt(m->g * (m->l1 + m->l2)) * dxs[ARM_Y];
+    dx[ARM_Y] = speed_unit(m) * dxs[ARM_Y];
 }
 
 /* ------------------------------------------------------------ variables */
@@ -102,7 +105,7 @@ void model_reset(Model *m)
 /* The tip in SI, the forces (M g), the energy (M g L) and the scaled coefficients. */
 static void outputs(Model *m, const Contact *c)
 {
-    const double M = m->m1 + m->m2, L = m->l1 + m->l2, U = sqrt(m->g * L), Mg = M * m->g;
+    const double M = m->m1 + m->m2, L = m->l1 + m->l2, U = speed_unit(m), Mg = M * m->g;
     const BodyState s = contact_body(c, m->xs);
     const ContactCoeffs k = contact_coeffs(&c->law, &s);
     double *out = m->out;
