@@ -287,7 +287,7 @@ def test_a_state_on_a_stick_fold_leaves_it_by_a_state_the_fold_depends_on(build)
     assert "all checks passed" in output
 
 
-def test_the_arm_gap_rows_and_reference_match_the_tip_written_independently(build):
+def test_the_arm_gap_state_rows_and_height_match_the_tip_written_independently(build):
     code, output = run([build / "arm_unit"], timeout=60)
     assert_clean(code, output, "arm_unit")
     assert "all checks passed" in output

@@ -213,23 +213,23 @@ def _rod_times(rng, key, c, model):
     the cases up to 1.5 time units later, through the flight and what follows (another touch-down,
     slip, stick: Co-Simulation's hand-overs between its flight and contact solvers). A later time
     whose reference fails (the modes chatter where the rod comes to lie on the floor) falls back to
-    the return, counted in REDRAWN."""
-    t_ret = rod_reference(*key, c.theta0, c.phi0)["t"]
+    the return, counted in REDRAWN. Returns (t_end, the later time or None, the contacts up to t_end)."""
+    returned = rod_reference(*key, c.theta0, c.phi0)
     if rng.uniform() < 0.5:
-        return t_ret, None
-    t_end = t_ret + float(rng.uniform(0.05, 1.5))
+        return returned["t"], None, returned["contacts"]
+    t_end = returned["t"] + float(rng.uniform(0.05, 1.5))
     try:
-        rod_reference(*key, c.theta0, c.phi0, t_end)
+        later = rod_reference(*key, c.theta0, c.phi0, t_end)
     except Exception:
         REDRAWN[model] += 1
-        return t_ret, None
-    return t_end, t_end
+        return returned["t"], None, returned["contacts"]
+    return t_end, t_end, later["contacts"]
 
 
 def rod_case(rng, index):
     c = rod_parameters(rng)
     key = (c.alpha, c.mu, c.delta, c.epsilon, c.v0, c.epsilon * c.w10)
-    t_end, later = _rod_times(rng, key, c, "PainleveRod")
+    t_end, later, contacts = _rod_times(rng, key, c, "PainleveRod")
     scales = dict(v=c.v0, w=c.v0, theta=1.0, phi=c.v0)
 
     def reference(theta0=c.theta0):
@@ -242,7 +242,7 @@ def rod_case(rng, index):
     def perturbed():
         return reference(c.theta0 + SENSITIVITY_STEP)[0]
     return Case("PainleveRod", f"{index}", start, t_end, ("v", "w", "theta", "phi"),
-                lambda: reference(), perturbed, phases=rod_reference(*key, c.theta0, c.phi0, later)["contacts"])
+                lambda: reference(), perturbed, phases=contacts)
 
 
 def si_case(rng, index):
@@ -255,7 +255,7 @@ def si_case(rng, index):
     alpha, eps, delta = m * l * l / J, math.sqrt(m * g / (k * l)), cd / math.sqrt(m * k)
     T, U = math.sqrt(l / g), math.sqrt(g * l)
     key = (alpha, c.mu, delta, eps, c.v0, eps * c.w10)
-    t_end, later = _rod_times(rng, key, c, "PainleveRodSI")
+    t_end, later, contacts = _rod_times(rng, key, c, "PainleveRodSI")
     scales = dict(v=c.v0, w=c.v0, theta=1.0, phi=c.v0)
 
     def reference(theta0=c.theta0):
@@ -265,8 +265,7 @@ def si_case(rng, index):
     start = dict(m=m, l=l, J=J, g=g, k=k, c=cd, mu=c.mu, x=0.0, v=c.v0 * U, y=0.0, w=eps * c.w10 * U,
                  theta=c.theta0, phi=c.phi0 / T)
     case = Case("PainleveRodSI", f"{index}", start, t_end * T, ("v", "w", "theta", "phi"),
-                lambda: reference(), lambda: reference(c.theta0 + SENSITIVITY_STEP)[0],
-                phases=rod_reference(*key, c.theta0, c.phi0, later)["contacts"])
+                lambda: reference(), lambda: reference(c.theta0 + SENSITIVITY_STEP)[0], phases=contacts)
     case.to_scaled = lambda out: dict(v=out["v"] / U, w=out["w"] / U, theta=out["theta"], phi=out["phi"] * T)
     return case
 

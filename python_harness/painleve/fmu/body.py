@@ -2,8 +2,8 @@
 """Any body FMU (the rod, the two-link arm, ...) through nothing but its own variables.
 
 A body FMU has start values (its continuous outputs with initial="exact": the coordinates and rates
-a user sets; its states may be others, such as the arm's turns from a reference), the contact point's height `y`, slip speed
-`v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
+a user sets; its states may include more, such as the arm's `y`, which the FMU calculates at the
+start), the contact point's height `y`, slip speed `v` and normal speed `w`, `contact`, `epsilon` and `delta` (parameters, or calculated from the
 stiffness `k` and damping `c`: eps ~ k^-1/2, delta ~ c k^-1/2, as every body's scaling has it),
 and the coefficients of eq Painleve at the current state as outputs (a, b, p_plus, p_minus,
 q_plus, q_minus, S_w, scaled). `Body` gives, without any body-specific kinematics:
